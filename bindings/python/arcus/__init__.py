@@ -1,0 +1,75 @@
+"""arcus: light transport in non-linear media (curved rays) over OpenCL.
+
+A thin ctypes layer over the C library libarcus with numpy in and out::
+
+    import arcus
+    from arcus.media import Linear
+
+    with arcus.Context() as ctx:
+        result = ctx.advance(Linear(1.0, (0, 0.1, 0)), origins, directions, length=10.0)
+        print(result.positions, result.status)
+
+The shared library is looked up, in order, at the ARCUS_LIBRARY environment variable
+(a path), in a build directory of the source tree this package lives in
+(``build/`` first, then ``build*/``), then among installed libraries;
+:data:`library_path` says which one was loaded.
+"""
+
+import ctypes as _ctypes
+
+from . import media
+from ._constants import (
+    DEVICE_DEFAULT,
+    EARTH_RADIUS,
+    FEATURES,
+    FIELD_KINDS,
+    METHODS,
+    PRECISIONS,
+    RAY_DONE,
+    RAY_FAILED,
+    RAY_INVALID_INPUT,
+    RAY_LEFT_BOX,
+    RAY_STATUS_NAMES,
+    RAY_STEP_LIMIT,
+    feature_names,
+)
+from ._errors import ArgumentError, Error, LibraryNotFoundError
+from ._lib import check as _check
+from ._lib import lib as _libarcus
+from ._lib import library_path  # the path (or soname) libarcus was loaded from
+from .context import AdvanceResult, Context, DeviceInfo, devices
+
+
+def _version():
+    major, minor, patch = _ctypes.c_int(), _ctypes.c_int(), _ctypes.c_int()
+    _check(_libarcus.arcus_get_version(_ctypes.byref(major), _ctypes.byref(minor), _ctypes.byref(patch)))
+    return "%d.%d.%d" % (major.value, minor.value, patch.value)
+
+
+#: Version of the loaded libarcus ("major.minor.patch", from arcus_get_version).
+__version__ = _version()
+
+__all__ = [
+    "AdvanceResult",
+    "ArgumentError",
+    "Context",
+    "DEVICE_DEFAULT",
+    "DeviceInfo",
+    "EARTH_RADIUS",
+    "Error",
+    "FEATURES",
+    "FIELD_KINDS",
+    "LibraryNotFoundError",
+    "METHODS",
+    "PRECISIONS",
+    "RAY_DONE",
+    "RAY_FAILED",
+    "RAY_INVALID_INPUT",
+    "RAY_LEFT_BOX",
+    "RAY_STATUS_NAMES",
+    "RAY_STEP_LIMIT",
+    "devices",
+    "feature_names",
+    "library_path",
+    "media",
+]

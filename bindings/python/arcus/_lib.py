@@ -1,0 +1,274 @@
+"""Finding and loading libarcus, and the ctypes mirror of include/arcus/arcus.h.
+
+Everything that knows the C ABI lives here: struct layouts, function prototypes and
+the translation of a failed ``arcus_status`` into a Python exception.  The rest of the
+package only calls ``lib.<function>`` and :func:`check`.
+"""
+
+import ctypes
+import ctypes.util
+import os
+import sys
+from ctypes import POINTER, c_char, c_char_p, c_double, c_int, c_int32, c_size_t, c_uint32, c_uint64, c_void_p
+from pathlib import Path
+
+from ._errors import LibraryNotFoundError, error_for
+
+# The file name CMake gives the shared library on each platform.
+_LIBRARY_NAME = {"darwin": "libarcus.dylib", "win32": "arcus.dll"}.get(sys.platform, "libarcus.so")
+
+# ---- structs (field order and types exactly as in arcus.h) ---------------------------
+# C enums are passed as `int`, which is what every ABI arcus targets uses for them.
+
+
+class DeviceInfoStruct(ctypes.Structure):
+    """arcus_device_info."""
+
+    _fields_ = [
+        ("index", c_uint32),
+        ("name", c_char * 256),
+        ("platform", c_char * 256),
+        ("version", c_char * 128),
+        ("is_gpu", c_int32),
+        ("fp64", c_int32),
+        ("compute_units", c_uint32),
+        ("global_memory", c_uint64),
+        ("lanes", c_uint32),
+    ]
+
+
+class InversionStruct(ctypes.Structure):
+    """arcus_inversion."""
+
+    _fields_ = [("base", c_double), ("top", c_double), ("delta_t", c_double)]
+
+
+class AtmosphereDescStruct(ctypes.Structure):
+    """arcus_atmosphere_desc."""
+
+    _fields_ = [
+        ("spherical", c_int32),
+        ("wavelength", c_double),
+        ("sea_level_temperature", c_double),
+        ("sea_level_pressure", c_double),
+        ("inversion_count", c_uint32),
+        ("inversions", POINTER(InversionStruct)),
+    ]
+
+
+class AdvanceParamsStruct(ctypes.Structure):
+    """arcus_advance_params."""
+
+    _fields_ = [
+        ("method", c_int),
+        ("precision", c_int),
+        ("length", c_double),
+        ("step", c_double),
+        ("rtol", c_double),
+        ("atol", c_double),
+        ("min_step", c_double),
+        ("max_step", c_double),
+        ("max_rejections", c_uint32),
+        ("max_steps", c_uint64),
+        ("use_box", c_int32),
+        ("box_min", c_double * 3),
+        ("box_max", c_double * 3),
+        ("record_path", c_int32),
+        ("path_capacity", c_uint32),
+    ]
+
+
+class JobStatsStruct(ctypes.Structure):
+    """arcus_job_stats."""
+
+    _fields_ = [
+        ("build_seconds", c_double),
+        ("kernel_seconds", c_double),
+        ("total_seconds", c_double),
+        ("cache_hit", c_int32),
+        ("lanes", c_uint32),
+        ("groups", c_uint32),
+    ]
+
+
+#: void (*arcus_error_callback)(void* user, arcus_status status, const char* message)
+ERROR_CALLBACK = ctypes.CFUNCTYPE(None, c_void_p, c_int, c_char_p)
+
+# ---- prototypes -----------------------------------------------------------------------
+# Handles are opaque, so c_void_p; out-handles are POINTER(c_void_p).
+_status = c_int
+_handle = c_void_p
+_out_handle = POINTER(c_void_p)
+_dvec = POINTER(c_double)  # const double[3] and double arrays alike
+_u32vec = POINTER(c_uint32)
+
+_PROTOTYPES = {
+    # name: (restype, argtypes)
+    "arcus_status_string": (c_char_p, [c_int]),
+    "arcus_get_version": (_status, [POINTER(c_int), POINTER(c_int), POINTER(c_int)]),
+    "arcus_last_error": (c_char_p, []),
+    "arcus_device_count": (_status, [POINTER(c_uint32)]),
+    "arcus_device_get_info": (_status, [c_uint32, POINTER(DeviceInfoStruct)]),
+    "arcus_context_create": (_status, [c_int32, _out_handle]),
+    "arcus_context_retain": (_status, [_handle]),
+    "arcus_context_release": (_status, [_handle]),
+    "arcus_context_get_device": (_status, [_handle, POINTER(DeviceInfoStruct)]),
+    "arcus_context_last_error": (c_char_p, [_handle]),
+    "arcus_context_set_error_callback": (_status, [_handle, ERROR_CALLBACK, c_void_p]),
+    "arcus_field_create_constant": (_status, [_handle, c_double, _out_handle]),
+    "arcus_field_create_linear": (_status, [_handle, c_double, _dvec, _out_handle]),
+    "arcus_field_create_linear_n2": (_status, [_handle, c_double, _dvec, _out_handle]),
+    "arcus_field_create_luneburg": (_status, [_handle, _dvec, c_double, _out_handle]),
+    "arcus_field_create_fisheye": (_status, [_handle, _dvec, c_double, c_double, _out_handle]),
+    "arcus_atmosphere_desc_init": (_status, [POINTER(AtmosphereDescStruct)]),
+    "arcus_field_create_atmosphere": (_status, [_handle, POINTER(AtmosphereDescStruct), _out_handle]),
+    "arcus_field_create_grid": (_status, [_handle, _dvec, _u32vec, _dvec, _dvec, _out_handle]),
+    "arcus_field_create_grid_from_file": (_status, [_handle, c_char_p, c_int, _u32vec, _dvec, _dvec, _out_handle]),
+    "arcus_field_retain": (_status, [_handle]),
+    "arcus_field_release": (_status, [_handle]),
+    "arcus_field_get_kind": (_status, [_handle, POINTER(c_int)]),
+    "arcus_field_evaluate": (_status, [_handle, c_size_t, _dvec, _dvec, _dvec]),
+    "arcus_advance_params_init": (_status, [POINTER(AdvanceParamsStruct)]),
+    "arcus_features_to_string": (_status, [c_uint32, c_char_p, c_size_t]),
+    "arcus_advance": (_status, [_handle, _handle, POINTER(AdvanceParamsStruct), c_size_t, _dvec, _dvec, _out_handle]),
+    "arcus_job_retain": (_status, [_handle]),
+    "arcus_job_release": (_status, [_handle]),
+    "arcus_job_get_count": (_status, [_handle, POINTER(c_size_t)]),
+    "arcus_job_get_end_states": (
+        _status,
+        [_handle, _dvec, _dvec, POINTER(c_uint64), POINTER(c_int32), _dvec],
+    ),
+    "arcus_job_get_path_size": (_status, [_handle, POINTER(c_size_t)]),
+    "arcus_job_get_paths": (_status, [_handle, POINTER(c_uint64), _dvec, POINTER(c_uint64)]),
+    "arcus_job_get_features": (_status, [_handle, POINTER(c_uint32)]),
+    "arcus_job_get_stats": (_status, [_handle, POINTER(JobStatsStruct)]),
+}
+
+# ---- finding the library --------------------------------------------------------------
+
+
+def _source_root():
+    """The repository root this package sits in (it holds include/arcus/arcus.h), or None."""
+    for root in Path(__file__).resolve().parents:
+        if (root / "include" / "arcus" / "arcus.h").is_file():
+            return root
+    return None
+
+
+def _candidates():
+    """(description, path-or-name or None) pairs in the order they are tried.
+
+    In the source tree, ``build/`` (the default build directory) comes first, then
+    any other ``build*/`` in name order.  A None path records a place looked at that
+    offered nothing, for the error message.
+    """
+    found = []
+    root = _source_root()
+    if root is None:
+        found.append(("source tree", None))
+    else:
+        others = sorted(p for p in root.glob("build*") if p.is_dir() and p.name != "build")
+        for build in [root / "build"] + others:
+            found.append(("source tree build", str(build / _LIBRARY_NAME)))
+    found.append(("installed (ctypes.util.find_library('arcus'))", ctypes.util.find_library("arcus")))
+    found.append(("installed (sys.prefix)", str(Path(sys.prefix) / "lib" / _LIBRARY_NAME)))
+    return found
+
+
+def _open(path):
+    """ctypes.CDLL(path) with every prototype set; raises OSError or AttributeError."""
+    dll = ctypes.CDLL(path)
+    for name, (restype, argtypes) in _PROTOTYPES.items():
+        func = getattr(dll, name)  # AttributeError names the missing symbol
+        func.restype = restype
+        func.argtypes = argtypes
+    return dll
+
+
+def _how_to_fix():
+    root = _source_root() or "<arcus source>"
+    return (
+        "Build the library (cmake -S {0} -B {0}/build -DCMAKE_BUILD_TYPE=Release && cmake --build {0}/build) "
+        "or set ARCUS_LIBRARY to the path of libarcus.".format(root)
+    )
+
+
+def load():
+    """Loads libarcus; returns (ctypes.CDLL, the path or name it was loaded from).
+
+    Order: the ARCUS_LIBRARY environment variable (authoritative: if it is set and
+    unusable that is an error, never silently replaced by another build), a build in
+    the source tree, an installed library.  Raises LibraryNotFoundError listing every
+    place tried and why each failed.
+    """
+    explicit = os.environ.get("ARCUS_LIBRARY")
+    if explicit:
+        try:
+            return _open(explicit), explicit
+        except (OSError, AttributeError) as exc:
+            raise LibraryNotFoundError(
+                "ARCUS_LIBRARY=%s could not be loaded as libarcus: %s. Point ARCUS_LIBRARY at a built "
+                "libarcus.so, or unset it to search the source tree and installed locations." % (explicit, exc)
+            ) from None
+
+    tried = ["ARCUS_LIBRARY environment variable: not set"]
+    for description, path in _candidates():
+        if path is None:
+            tried.append("%s: nothing found" % description)
+            continue
+        # A bare name from find_library is resolved by the dynamic loader; a path that
+        # does not exist is simply not there and is not worth an OSError's wording.
+        if os.sep in path and not os.path.exists(path):
+            tried.append("%s: %s (not found)" % (description, path))
+            continue
+        try:
+            return _open(path), path
+        except (OSError, AttributeError) as exc:
+            tried.append("%s: %s (%s)" % (description, path, exc))
+    raise LibraryNotFoundError(
+        "libarcus could not be found. Looked in:\n  " + "\n  ".join(tried) + "\n" + _how_to_fix()
+    )
+
+
+lib, library_path = load()
+
+
+# ---- errors ---------------------------------------------------------------------------
+
+
+def decode(raw):
+    """A C string from the library as str ('' for NULL)."""
+    return raw.decode("utf-8", "replace") if raw else ""
+
+
+def status_name(code):
+    """The library's name for an arcus_status value."""
+    return decode(lib.arcus_status_string(code))
+
+
+def last_error(ctx_handle=None):
+    """The message of the last failed call: per context if given, else per thread."""
+    if ctx_handle is not None:
+        return decode(lib.arcus_context_last_error(ctx_handle))
+    return decode(lib.arcus_last_error())
+
+
+def check(code, ctx_handle=None):
+    """Raises the matching arcus.Error when ``code`` is not ARCUS_SUCCESS.
+
+    The message is read at once because the library keeps it only until the next call.
+    """
+    if code != 0:
+        raise error_for(code, last_error(ctx_handle), status_name(code))
+
+
+def vec3(values):
+    """A ``double[3]`` for the ``const double v[3]`` parameters."""
+    return (c_double * 3)(*values)
+
+
+def ptr(array, ctype=c_double):
+    """A pointer to the data of a C-contiguous numpy array (or NULL for None)."""
+    if array is None:
+        return None
+    return array.ctypes.data_as(POINTER(ctype))

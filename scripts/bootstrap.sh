@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs every system and Python dependency arcus needs; idempotent (a second run
+# installs nothing and takes a few seconds).  Debian 12 packages + PyPI only.
+set -euo pipefail
+
+debs=(
+  build-essential cmake pkg-config git
+  pocl-opencl-icd ocl-icd-opencl-dev ocl-icd-libopencl1 opencl-c-headers opencl-clhpp-headers clinfo
+  libembree-dev libopenimageio-dev libopenmesh-dev libglfw3-dev nlohmann-json3-dev
+  libgtest-dev googletest libboost-dev
+)
+missing=()
+for p in "${debs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "bootstrap: installing Debian packages: ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+PY=${PYTHON:-python3}
+if ! "$PY" -c 'import numpy, scipy, pytest, matplotlib' 2>/dev/null; then
+  echo "bootstrap: installing Python packages (numpy scipy pytest matplotlib)"
+  "$PY" -m pip install -q --disable-pip-version-check numpy scipy pytest matplotlib
+fi
+echo "bootstrap: all dependencies present"

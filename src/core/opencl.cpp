@@ -1,0 +1,53 @@
+#include "core/opencl.h"
+
+#include "core/error.h"
+
+namespace arcus {
+
+std::string cl_error_name(cl_int code) {
+  const char* name = "unknown OpenCL error";
+  switch (code) {
+#define ARCUS_CL_CASE(c) \
+  case c:                \
+    name = #c;           \
+    break;
+    ARCUS_CL_CASE(CL_DEVICE_NOT_FOUND)
+    ARCUS_CL_CASE(CL_DEVICE_NOT_AVAILABLE)
+    ARCUS_CL_CASE(CL_COMPILER_NOT_AVAILABLE)
+    ARCUS_CL_CASE(CL_MEM_OBJECT_ALLOCATION_FAILURE)
+    ARCUS_CL_CASE(CL_OUT_OF_RESOURCES)
+    ARCUS_CL_CASE(CL_OUT_OF_HOST_MEMORY)
+    ARCUS_CL_CASE(CL_BUILD_PROGRAM_FAILURE)
+    ARCUS_CL_CASE(CL_INVALID_VALUE)
+    ARCUS_CL_CASE(CL_INVALID_DEVICE)
+    ARCUS_CL_CASE(CL_INVALID_CONTEXT)
+    ARCUS_CL_CASE(CL_INVALID_COMMAND_QUEUE)
+    ARCUS_CL_CASE(CL_INVALID_MEM_OBJECT)
+    ARCUS_CL_CASE(CL_INVALID_PROGRAM)
+    ARCUS_CL_CASE(CL_INVALID_PROGRAM_EXECUTABLE)
+    ARCUS_CL_CASE(CL_INVALID_KERNEL_NAME)
+    ARCUS_CL_CASE(CL_INVALID_KERNEL)
+    ARCUS_CL_CASE(CL_INVALID_ARG_INDEX)
+    ARCUS_CL_CASE(CL_INVALID_ARG_VALUE)
+    ARCUS_CL_CASE(CL_INVALID_ARG_SIZE)
+    ARCUS_CL_CASE(CL_INVALID_KERNEL_ARGS)
+    ARCUS_CL_CASE(CL_INVALID_WORK_DIMENSION)
+    ARCUS_CL_CASE(CL_INVALID_WORK_GROUP_SIZE)
+    ARCUS_CL_CASE(CL_INVALID_WORK_ITEM_SIZE)
+    ARCUS_CL_CASE(CL_INVALID_GLOBAL_WORK_SIZE)
+    ARCUS_CL_CASE(CL_INVALID_BUFFER_SIZE)
+    ARCUS_CL_CASE(CL_INVALID_BUILD_OPTIONS)
+    ARCUS_CL_CASE(CL_INVALID_EVENT)
+    ARCUS_CL_CASE(CL_PROFILING_INFO_NOT_AVAILABLE)
+#undef ARCUS_CL_CASE
+    default:
+      break;
+  }
+  return std::string(name) + " (" + std::to_string(code) + ")";
+}
+
+void check_cl(cl_int code, const char* call) {
+  if (code != CL_SUCCESS) fail(ARCUS_ERROR_OPENCL, std::string(call) + " failed: " + cl_error_name(code));
+}
+
+}  // namespace arcus

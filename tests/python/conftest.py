@@ -1,0 +1,29 @@
+"""pytest setup for the Python bindings: import `arcus` from bindings/python.
+
+The package finds libarcus itself (ARCUS_LIBRARY, else a build*/ directory of this
+source tree, else an installed one); set ARCUS_LIBRARY to test a particular build.
+"""
+
+import sys
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[2]
+BINDINGS = REPO / "bindings" / "python"
+sys.path.insert(0, str(BINDINGS))
+
+import arcus  # noqa: E402  (needs the sys.path entry above)
+
+
+@pytest.fixture(scope="session")
+def ctx():
+    """One context for the whole session, so each kernel variant is compiled once."""
+    with arcus.Context() as context:
+        yield context
+
+
+@pytest.fixture(scope="session")
+def repo():
+    """The repository root."""
+    return REPO

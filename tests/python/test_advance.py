@@ -1,0 +1,202 @@
+"""Context.advance against closed forms: straight lines, catenaries, lenses, boxes."""
+
+import numpy as np
+import pytest
+
+import arcus
+from arcus.media import Constant, Linear, Luneburg, StandardAtmosphere
+from closed_forms import catenary, fan
+
+N0, G = 1.0, 0.1
+LINEAR = Linear(N0, (0.0, G, 0.0))  # n = 1 + 0.1 y
+INTEGRATORS = {"STRAIGHT", "EULER", "RK2", "RK4", "DP45"}
+
+
+def catenary_error(result, origins, directions, length):
+    end, direction = catenary(N0, G, origins, directions, length)
+    return np.abs(result.positions - end).max(), np.abs(result.directions - direction).max()
+
+
+def dp45_bound(steps, rtol, atol, scale):
+    """A bound on DP45's global error in this mild field.
+
+    Each accepted step keeps its local error below atol + rtol * |state| (state
+    components up to `scale`); local errors add up over the steps and grow at most by
+    e^(Lipschitz * length), about e^(g/n * L) <= e for these jobs.
+    """
+    return np.e * steps * (atol + rtol * scale)
+
+
+# ---- straight rays ----------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("method", ["dp45", "rk4"])
+def test_constant_field_is_one_exact_straight_segment(ctx, method):
+    rng = np.random.default_rng(1)
+    origins = rng.normal(size=(37, 3))
+    directions = rng.normal(size=(37, 3))  # not unit length on purpose
+    result = ctx.advance(Constant(1.4), origins, directions, method=method, length=7.5)
+    unit = directions / np.linalg.norm(directions, axis=1, keepdims=True)
+    # No truncation error at all; only a few roundings of o + L * d / |d|.
+    np.testing.assert_allclose(result.positions, origins + 7.5 * unit, rtol=0, atol=1e-13)
+    np.testing.assert_allclose(result.directions, unit, rtol=0, atol=1e-15)
+    assert np.all(result.lengths == 7.5)
+    assert np.all(result.status == arcus.RAY_DONE)
+    assert "STRAIGHT" in result.features and not (result.features & (INTEGRATORS - {"STRAIGHT"}))
+    assert result.feature_bits & arcus.FEATURES["STRAIGHT"]
+
+
+# ---- catenary (n = 1 + 0.1 y) ---------------------------------------------------------------
+
+
+def test_dp45_catenary(ctx):
+    origins, directions = fan(8)
+    rtol, atol, length = 1e-10, 1e-12, 10.0
+    result = ctx.advance(LINEAR, origins, directions, method="dp45", rtol=rtol, atol=atol, length=length)
+    assert np.all(result.status == arcus.RAY_DONE)
+    assert np.all(result.lengths == length)
+    assert {"DP45", "ANALYTIC_FIELD"} <= result.features and "FLOAT" not in result.features
+    position_error, direction_error = catenary_error(result, origins, directions, length)
+    # |r| <= 12 and |v| = n <= 2.2 over these paths.
+    assert position_error < dp45_bound(result.steps.max(), rtol, atol, 12.0)
+    assert direction_error < dp45_bound(result.steps.max(), rtol, atol, 12.0)
+    np.testing.assert_allclose(np.linalg.norm(result.directions, axis=1), 1.0, rtol=0, atol=1e-15)
+    assert result.stats["total_seconds"] > 0 and result.stats["lanes"] >= 1
+
+
+def test_tighter_tolerance_is_more_accurate(ctx):
+    origins, directions = fan(8)
+    errors = [catenary_error(ctx.advance(LINEAR, origins, directions, rtol=rtol, atol=1e-14, length=10.0),
+                             origins, directions, 10.0)[0] for rtol in (1e-5, 1e-8, 1e-11)]
+    assert errors[0] > 10 * errors[1] > 100 * errors[2]
+
+
+def test_float_precision(ctx):
+    origins, directions = fan(8)
+    length = 10.0
+    double = ctx.advance(LINEAR, origins, directions, rtol=1e-10, atol=1e-12, length=length)
+    single = ctx.advance(LINEAR, origins, directions, rtol=1e-5, atol=1e-6, length=length, precision="float")
+    assert "FLOAT" in single.features and "FLOAT" not in double.features
+    assert np.all(single.status == arcus.RAY_DONE)
+    float_error, _ = catenary_error(single, origins, directions, length)
+    double_error, _ = catenary_error(double, origins, directions, length)
+    # Float rounding (2^-24 relative, on |r| <= 12: ~7e-7 per operation) and the looser
+    # tolerance both add up over the steps: bounded like DP45 plus 4 roundings per step.
+    bound = dp45_bound(single.steps.max(), 1e-5, 1e-6, 12.0) + np.e * single.steps.max() * 4 * 12 * 2.0**-24
+    assert double_error < float_error < bound
+    assert float_error > 1e-8  # it really ran in float: double would be ~1e-10
+
+
+@pytest.mark.parametrize("method, order, step", [("euler", 1, 0.1), ("rk2", 2, 0.2), ("rk4", 4, 0.4)])
+def test_fixed_step_methods_converge_at_their_order(ctx, method, order, step):
+    origins, directions = fan(8)
+    length = 4.0
+    errors = []
+    for h in (step, step / 2):
+        result = ctx.advance(LINEAR, origins, directions, method=method, step=h, length=length)
+        assert method.upper() in result.features
+        assert np.all(result.status == arcus.RAY_DONE) and np.all(result.lengths == length)
+        assert np.all(result.steps == round(length / h))
+        errors.append(catenary_error(result, origins, directions, length)[0])
+    # Halving the step divides the error by 2^order (asymptotically; 25 % slack).
+    assert 0.75 * 2**order < errors[0] / errors[1] < 1.33 * 2**order
+
+
+def test_fixed_step_that_does_not_divide_the_length(ctx):
+    origins, directions = fan(8)
+    result = ctx.advance(LINEAR, origins, directions, method="rk4", step=0.3, length=1.0)
+    assert np.all(result.steps == 4)  # 3 steps of 0.3 and a last one of 0.1
+    assert np.all(result.lengths == 1.0)
+    assert catenary_error(result, origins, directions, 1.0)[0] < 1e-6
+
+
+def test_max_steps_stops_rays(ctx):
+    origins, directions = fan(8)
+    fixed = ctx.advance(LINEAR, origins, directions, method="rk4", step=0.01, length=1.0, max_steps=5)
+    assert np.all(fixed.status == arcus.RAY_STEP_LIMIT) and np.all(fixed.steps == 5)
+    np.testing.assert_allclose(fixed.lengths, 0.05, rtol=1e-15)
+    adaptive = ctx.advance(LINEAR, origins, directions, method="dp45", length=10.0, max_steps=3)
+    assert np.all(adaptive.status == arcus.RAY_STEP_LIMIT) and np.all(adaptive.steps == 3)
+    assert np.all(adaptive.lengths < 10.0)
+    assert set(adaptive.status_names) == {"STEP_LIMIT"}
+
+
+def test_dp45_gives_up_when_the_tolerance_cannot_be_met(ctx):
+    origins, directions = fan(8)
+    result = ctx.advance(LINEAR, origins, directions, step=5.0, rtol=1e-14, atol=1e-16, max_rejections=0,
+                         length=10.0)
+    assert np.all(result.status == arcus.RAY_FAILED)
+
+
+# ---- boxes ----------------------------------------------------------------------------------
+
+BOX = (np.array([-1.0, -1.0, -0.5]), np.array([2.0, 1.0, 3.0]))
+
+
+def test_straight_rays_leave_the_box_on_its_faces(ctx):
+    rng = np.random.default_rng(2)
+    directions = rng.normal(size=(40, 3))
+    origins = np.zeros((40, 3))
+    origins[-1] = (5.0, 0.0, 0.0)  # starts outside
+    result = ctx.advance(Constant(1.0), origins, directions, length=100.0, box=BOX)
+    assert "BOX" in result.features
+    unit = directions / np.linalg.norm(directions, axis=1, keepdims=True)
+    # Distance to the first face along each direction.
+    with np.errstate(divide="ignore"):
+        t = np.where(unit > 0, (BOX[1] - origins) / unit, (BOX[0] - origins) / unit).min(axis=1)
+    inside = slice(0, 39)
+    np.testing.assert_allclose(result.positions[inside], (origins + t[:, None] * unit)[inside], rtol=0, atol=1e-13)
+    np.testing.assert_allclose(result.lengths[inside], t[inside], rtol=1e-14)
+    assert np.all(result.status == arcus.RAY_LEFT_BOX)
+    assert result.lengths[-1] == 0.0
+    np.testing.assert_array_equal(result.positions[-1], origins[-1])
+    # A ray too short to reach a face is done.
+    short = ctx.advance(Constant(1.0), [0.0, 0.0, 0.0], [1.0, 0.0, 0.0], length=0.5, box=BOX)
+    assert short.status[0] == arcus.RAY_DONE and short.positions[0, 0] == 0.5
+
+
+def test_curved_rays_stop_on_the_box_face(ctx):
+    origins, directions = fan(8)
+    top = 1.5
+    box = ((-1.0, -10.0, -1.0), (100.0, top, 1.0))
+    result = ctx.advance(LINEAR, origins, directions, length=50.0, box=box)
+    assert np.all(result.status == arcus.RAY_LEFT_BOX)
+    # The rays curve up into the higher index and leave through the top face.
+    np.testing.assert_allclose(result.positions[:, 1], top, rtol=0, atol=1e-12)
+    assert np.all(result.lengths < 50.0)
+
+
+# ---- lenses and air --------------------------------------------------------------------------
+
+
+def test_luneburg_lens_focuses_parallel_rays_on_its_far_side(ctx):
+    """A Luneburg lens images a parallel beam onto the point of its surface opposite the beam."""
+    center, radius = np.array([0.5, -0.25, 0.0]), 2.0
+    offsets = np.linspace(-0.9, 0.9, 13) * radius
+    origins = center + np.stack([np.full(13, -3 * radius), offsets, np.zeros(13)], axis=1)
+    directions = np.tile([1.0, 0.0, 0.0], (13, 1))
+    result = ctx.advance(Luneburg(center, radius), origins, directions, length=6 * radius, rtol=1e-11,
+                         atol=1e-13)
+    assert np.all(result.status == arcus.RAY_DONE)
+    focus = center + (radius, 0.0, 0.0)
+    # Outside the lens rays are straight: each end ray, extended back, passes the focus.
+    miss = np.linalg.norm(np.cross(focus - result.positions, result.directions), axis=1)
+    # The index's gradient jumps at the surface, which costs DP45 some accuracy there.
+    assert miss.max() < 1e-6 * radius
+    assert np.ptp(result.directions[:, 1]) > 1.0  # the beam really was bent, into a wide fan
+
+
+def test_horizontal_ray_in_flat_atmosphere_follows_local_catenary(ctx):
+    """Near one height the atmosphere is a linear field; the ray bends down with it."""
+    air = StandardAtmosphere()
+    height, length = 10.0, 2000.0
+    n, gradient = air.evaluate(ctx, [0.0, height, 0.0])
+    g = gradient[0, 1]
+    result = ctx.advance(air, [0.0, height, 0.0], [1.0, 0.0, 0.0], length=length, rtol=1e-12, atol=1e-12)
+    assert "ATMOSPHERE" in result.features
+    end, _ = catenary(n[0] - g * height, g, [[0.0, height, 0.0]], [[1.0, 0.0, 0.0]], length)
+    drop = height - result.positions[0, 1]
+    assert drop == pytest.approx(-g / n[0] * length**2 / 2, rel=1e-3)  # ~5 cm
+    # The gradient changes by ~1e-5 relative over the 5 cm drop; the catenary with the
+    # starting gradient is good to well under a micrometre.
+    assert abs(result.positions[0, 1] - end[0, 1]) < 1e-6

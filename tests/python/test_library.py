@@ -1,0 +1,214 @@
+"""The binding against the contract: include/arcus/arcus.h and the loaded library.
+
+The constants and struct layouts of the package are hand-written mirrors of the
+header; these tests catch any drift between the two.
+"""
+
+import ctypes
+import ctypes.util
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+import pytest
+
+import arcus
+from arcus import _lib
+
+
+@pytest.fixture(scope="module")
+def header(repo):
+    return (repo / "include" / "arcus" / "arcus.h").read_text()
+
+
+def enum_values(header, enum_name, prefix):
+    """{NAME: value} of `prefix`NAME = value entries inside `typedef enum enum_name {...}`."""
+    body = re.search(r"typedef enum %s \{(.*?)\}" % enum_name, header, re.S).group(1)
+    return {m.group(1): int(m.group(2)) for m in re.finditer(r"%s(\w+) = (\d+)" % prefix, body)}
+
+
+def test_library_loaded_and_version_matches_header(header):
+    assert os.path.exists(arcus.library_path) or os.sep not in arcus.library_path
+    macros = {k: int(v) for k, v in re.findall(r"#define ARCUS_VERSION_(MAJOR|MINOR|PATCH) (\d+)", header)}
+    assert arcus.__version__ == "%d.%d.%d" % (macros["MAJOR"], macros["MINOR"], macros["PATCH"])
+
+
+def test_feature_bits_match_header(header):
+    bits = {name: 1 << int(shift) for name, shift in re.findall(r"#define ARCUS_FEATURE_(\w+) \(1u << (\d+)\)", header)}
+    assert bits == arcus.FEATURES
+
+
+def test_feature_names_match_library():
+    buffer = ctypes.create_string_buffer(1024)
+    for name, bit in arcus.FEATURES.items():
+        assert _lib.lib.arcus_features_to_string(bit, buffer, len(buffer)) == 0
+        assert buffer.value.decode() == name
+    every = sum(arcus.FEATURES.values())
+    assert _lib.lib.arcus_features_to_string(every, buffer, len(buffer)) == 0
+    assert set(buffer.value.decode().split()) == set(arcus.FEATURES)
+    assert arcus.feature_names(every) == set(arcus.FEATURES)
+
+
+def test_enums_match_header(header):
+    rays = enum_values(header, "arcus_ray_status", "ARCUS_RAY_")
+    assert rays == {name: getattr(arcus, "RAY_" + name) for name in rays}
+    assert {v: k for k, v in rays.items()} == arcus.RAY_STATUS_NAMES
+    methods = enum_values(header, "arcus_method", "ARCUS_METHOD_")
+    assert {k.lower(): v for k, v in methods.items()} == arcus.METHODS
+    precisions = enum_values(header, "arcus_precision", "ARCUS_PRECISION_")
+    assert {k.lower(): v for k, v in precisions.items()} == arcus.PRECISIONS
+    kinds = enum_values(header, "arcus_field_kind", "ARCUS_FIELD_")
+    assert {v: k for k, v in kinds.items()} == arcus.FIELD_KINDS
+    assert float(re.search(r"#define ARCUS_EARTH_RADIUS ([\d.]+)", header).group(1)) == arcus.EARTH_RADIUS
+    assert int(re.search(r"#define ARCUS_DEVICE_DEFAULT \((-?\d+)\)", header).group(1)) == arcus.DEVICE_DEFAULT
+
+
+def test_status_names_come_from_library(header):
+    statuses = enum_values(header, "arcus_status", "ARCUS_")
+    assert len(statuses) == 10
+    for name, code in statuses.items():
+        assert _lib.status_name(code) == "ARCUS_" + name
+
+
+def test_advance_params_defaults():
+    """The documented defaults, read through the ctypes struct: a layout error garbles them."""
+    params = _lib.AdvanceParamsStruct()
+    assert _lib.lib.arcus_advance_params_init(ctypes.byref(params)) == 0
+    assert params.method == arcus.METHODS["dp45"]
+    assert params.precision == arcus.PRECISIONS["double"]
+    assert (params.length, params.step, params.rtol, params.atol) == (1.0, 0.0, 1e-9, 1e-12)
+    assert (params.min_step, params.max_step, params.max_rejections) == (1e-12, 0.0, 64)
+    assert params.max_steps == 10_000_000
+    assert (params.use_box, params.record_path, params.path_capacity) == (0, 0, 0)
+
+
+def test_atmosphere_defaults_match_library():
+    desc = _lib.AtmosphereDescStruct()
+    assert _lib.lib.arcus_atmosphere_desc_init(ctypes.byref(desc)) == 0
+    python = arcus.media.StandardAtmosphere()
+    assert desc.spherical == int(python.spherical)
+    assert desc.wavelength == python.wavelength
+    assert desc.sea_level_temperature == python.sea_level_temperature
+    assert desc.sea_level_pressure == python.sea_level_pressure
+    assert desc.inversion_count == len(python.inversions) == 0
+
+
+LAYOUT_PROGRAM = r"""
+#include <stdio.h>
+#include <stddef.h>
+#include "arcus/arcus.h"
+#define F(T, m) printf(#T "." #m " %zu %zu\n", offsetof(T, m), sizeof(((T*)0)->m));
+int main(void) {
+  printf("arcus_device_info %zu\n", sizeof(arcus_device_info));
+  F(arcus_device_info, index) F(arcus_device_info, name) F(arcus_device_info, platform)
+  F(arcus_device_info, version) F(arcus_device_info, is_gpu) F(arcus_device_info, fp64)
+  F(arcus_device_info, compute_units) F(arcus_device_info, global_memory) F(arcus_device_info, lanes)
+  printf("arcus_inversion %zu\n", sizeof(arcus_inversion));
+  F(arcus_inversion, base) F(arcus_inversion, top) F(arcus_inversion, delta_t)
+  printf("arcus_atmosphere_desc %zu\n", sizeof(arcus_atmosphere_desc));
+  F(arcus_atmosphere_desc, spherical) F(arcus_atmosphere_desc, wavelength)
+  F(arcus_atmosphere_desc, sea_level_temperature) F(arcus_atmosphere_desc, sea_level_pressure)
+  F(arcus_atmosphere_desc, inversion_count) F(arcus_atmosphere_desc, inversions)
+  printf("arcus_advance_params %zu\n", sizeof(arcus_advance_params));
+  F(arcus_advance_params, method) F(arcus_advance_params, precision) F(arcus_advance_params, length)
+  F(arcus_advance_params, step) F(arcus_advance_params, rtol) F(arcus_advance_params, atol)
+  F(arcus_advance_params, min_step) F(arcus_advance_params, max_step) F(arcus_advance_params, max_rejections)
+  F(arcus_advance_params, max_steps) F(arcus_advance_params, use_box) F(arcus_advance_params, box_min)
+  F(arcus_advance_params, box_max) F(arcus_advance_params, record_path) F(arcus_advance_params, path_capacity)
+  printf("arcus_job_stats %zu\n", sizeof(arcus_job_stats));
+  F(arcus_job_stats, build_seconds) F(arcus_job_stats, kernel_seconds) F(arcus_job_stats, total_seconds)
+  F(arcus_job_stats, cache_hit) F(arcus_job_stats, lanes) F(arcus_job_stats, groups)
+  return 0;
+}
+"""
+
+STRUCTS = {
+    "arcus_device_info": _lib.DeviceInfoStruct,
+    "arcus_inversion": _lib.InversionStruct,
+    "arcus_atmosphere_desc": _lib.AtmosphereDescStruct,
+    "arcus_advance_params": _lib.AdvanceParamsStruct,
+    "arcus_job_stats": _lib.JobStatsStruct,
+}
+
+
+def test_struct_layouts_match_c_compiler(repo, tmp_path):
+    """Every ctypes struct has the C compiler's size and member offsets and sizes."""
+    compiler = shutil.which("cc") or shutil.which("gcc") or shutil.which("clang")
+    if compiler is None:
+        pytest.skip("no C compiler to measure the C layouts with")
+    source = tmp_path / "layout.c"
+    source.write_text(LAYOUT_PROGRAM)
+    program = tmp_path / "layout"
+    subprocess.run([compiler, "-std=c99", "-I", str(repo / "include"), str(source), "-o", str(program)], check=True)
+    lines = subprocess.run([str(program)], check=True, capture_output=True, text=True).stdout.splitlines()
+    checked = 0
+    for line in lines:
+        words = line.split()
+        if len(words) == 2:
+            assert ctypes.sizeof(STRUCTS[words[0]]) == int(words[1]), line
+        else:
+            struct_name, member = words[0].split(".")
+            descriptor = getattr(STRUCTS[struct_name], member)
+            assert (descriptor.offset, descriptor.size) == (int(words[1]), int(words[2])), line
+        checked += 1
+    assert checked == 5 + sum(len(s._fields_) for s in STRUCTS.values())
+
+
+# ---- finding the library ---------------------------------------------------------------
+
+
+def import_in_tree(tree, environment):
+    """Imports the package copied into `tree` in a fresh interpreter; (ok, output)."""
+    env = {k: v for k, v in os.environ.items() if k != "ARCUS_LIBRARY"}
+    env.update(environment)
+    env["PYTHONPATH"] = str(tree / "bindings" / "python")
+    run = subprocess.run(
+        [sys.executable, "-c", "import arcus; print(arcus.library_path)"],
+        cwd=tree, env=env, capture_output=True, text=True, timeout=60,
+    )
+    return run.returncode == 0, (run.stdout + run.stderr).strip()
+
+
+@pytest.fixture
+def tree(repo, tmp_path):
+    """A copy of the source tree's layout, with the package but no library."""
+    (tmp_path / "include" / "arcus").mkdir(parents=True)
+    shutil.copy(repo / "include" / "arcus" / "arcus.h", tmp_path / "include" / "arcus")
+    shutil.copytree(repo / "bindings" / "python" / "arcus", tmp_path / "bindings" / "python" / "arcus",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    return tmp_path
+
+
+def add_build(tree, name):
+    build = tree / name
+    build.mkdir()
+    shutil.copy(os.path.realpath(arcus.library_path), build / "libarcus.so")
+    return str(build / "libarcus.so")
+
+
+def test_loader_prefers_build_then_other_build_dirs(tree):
+    second = add_build(tree, "build-z")
+    first = add_build(tree, "build-a")
+    assert import_in_tree(tree, {}) == (True, first)
+    default = add_build(tree, "build")
+    assert import_in_tree(tree, {}) == (True, default)
+    # ARCUS_LIBRARY wins over everything.
+    assert import_in_tree(tree, {"ARCUS_LIBRARY": second}) == (True, second)
+
+
+def test_loader_error_lists_every_place(tree):
+    ok, output = import_in_tree(tree, {"ARCUS_LIBRARY": str(tree / "missing" / "libarcus.so")})
+    assert not ok
+    assert "ImportError" in output or "LibraryNotFoundError" in output
+    assert str(tree / "missing" / "libarcus.so") in output
+
+    if ctypes.util.find_library("arcus"):
+        pytest.skip("an installed libarcus would be found; the not-found message cannot be produced")
+    ok, output = import_in_tree(tree, {})
+    assert not ok
+    assert "LibraryNotFoundError" in output
+    for place in ("ARCUS_LIBRARY", str(tree / "build" / "libarcus.so"), "find_library", sys.prefix):
+        assert place in output
+    assert "cmake" in output

@@ -1,0 +1,308 @@
+// Shared helpers for the arcus C++ test suites: vector math, RAII handles, a fixture
+// holding one context per test suite, a tracing wrapper, and the closed-form ray paths
+// the physics tests compare against (each derivation is in its comment).
+#ifndef ARCUS_TESTS_TEST_UTIL_H
+#define ARCUS_TESTS_TEST_UTIL_H
+
+#include <arcus/arcus.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace arcus_test {
+
+// ---- vector math -----------------------------------------------------------------
+using V3 = std::array<double, 3>;
+
+inline V3 operator+(const V3& a, const V3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+inline V3 operator-(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+inline V3 operator-(const V3& a) { return {-a[0], -a[1], -a[2]}; }
+inline V3 operator*(double s, const V3& a) { return {s * a[0], s * a[1], s * a[2]}; }
+inline V3 operator*(const V3& a, double s) { return s * a; }
+inline V3 operator/(const V3& a, double s) { return {a[0] / s, a[1] / s, a[2] / s}; }
+inline double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline V3 cross(const V3& a, const V3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+inline double norm(const V3& a) { return std::sqrt(dot(a, a)); }
+inline V3 normalize(const V3& a) { return a / norm(a); }
+inline double distance(const V3& a, const V3& b) { return norm(a - b); }
+inline bool finite(const V3& a) { return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]); }
+// Angle between two directions, accurate for tiny and near-π angles alike.
+inline double angle_between(const V3& a, const V3& b) { return std::atan2(norm(cross(a, b)), dot(a, b)); }
+// Rodrigues' rotation of v about the unit axis k by angle t.
+inline V3 rotate(const V3& v, const V3& axis, double t) {
+  const V3 k = normalize(axis);
+  return std::cos(t) * v + std::sin(t) * cross(k, v) + (1.0 - std::cos(t)) * dot(k, v) * k;
+}
+inline double deg(double radians) { return radians * 180.0 / M_PI; }
+inline double rad(double degrees) { return degrees * M_PI / 180.0; }
+
+inline std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+inline bool contains_ci(const char* haystack, const char* needle) {
+  return haystack && lower(haystack).find(lower(needle)) != std::string::npos;
+}
+
+// ---- RAII handles ------------------------------------------------------------------
+struct ContextDeleter {
+  void operator()(arcus_context_t* c) const { arcus_context_release(c); }
+};
+struct FieldDeleter {
+  void operator()(arcus_field_t* f) const { arcus_field_release(f); }
+};
+struct JobDeleter {
+  void operator()(arcus_job_t* j) const { arcus_job_release(j); }
+};
+using ContextPtr = std::unique_ptr<arcus_context_t, ContextDeleter>;
+using FieldPtr = std::unique_ptr<arcus_field_t, FieldDeleter>;
+using JobPtr = std::unique_ptr<arcus_job_t, JobDeleter>;
+
+// ---- fixture: one context per test suite ------------------------------------------
+class ArcusTest : public ::testing::Test {
+ public:
+  static void SetUpTestSuite() {
+    if (ctx_) return;
+    const arcus_status st = arcus_context_create(ARCUS_DEVICE_DEFAULT, &ctx_);
+    if (st != ARCUS_SUCCESS) {
+      std::fprintf(stderr, "arcus_context_create failed: %s: %s\n", arcus_status_string(st), arcus_last_error());
+      ctx_ = nullptr;
+    }
+  }
+  static void TearDownTestSuite() {
+    if (ctx_) arcus_context_release(ctx_);
+    ctx_ = nullptr;
+  }
+
+ protected:
+  void SetUp() override { ASSERT_NE(ctx_, nullptr) << "no arcus context: " << arcus_last_error(); }
+  static arcus_context_t* ctx() { return ctx_; }
+  static std::string last_error() { return ctx_ ? arcus_context_last_error(ctx_) : arcus_last_error(); }
+
+  // Field factories: a failure is reported (with the library's message) and gives null.
+  static FieldPtr check(arcus_status st, arcus_field_t* f, const char* what) {
+    EXPECT_EQ(st, ARCUS_SUCCESS) << what << ": " << arcus_status_string(st) << ": " << last_error();
+    return FieldPtr(st == ARCUS_SUCCESS ? f : nullptr);
+  }
+  static FieldPtr constant(double n) {
+    arcus_field_t* f = nullptr;
+    return check(arcus_field_create_constant(ctx_, n, &f), f, "constant field");
+  }
+  static FieldPtr linear(double n0, const V3& g) {
+    arcus_field_t* f = nullptr;
+    return check(arcus_field_create_linear(ctx_, n0, g.data(), &f), f, "linear field");
+  }
+  static FieldPtr linear_n2(double a, const V3& k) {
+    arcus_field_t* f = nullptr;
+    return check(arcus_field_create_linear_n2(ctx_, a, k.data(), &f), f, "linear n^2 field");
+  }
+  static FieldPtr luneburg(const V3& c, double radius) {
+    arcus_field_t* f = nullptr;
+    return check(arcus_field_create_luneburg(ctx_, c.data(), radius, &f), f, "Luneburg field");
+  }
+  static FieldPtr fisheye(const V3& c, double radius, double n0) {
+    arcus_field_t* f = nullptr;
+    return check(arcus_field_create_fisheye(ctx_, c.data(), radius, n0, &f), f, "fish-eye field");
+  }
+  static FieldPtr atmosphere(const arcus_atmosphere_desc& d) {
+    arcus_field_t* f = nullptr;
+    return check(arcus_field_create_atmosphere(ctx_, &d, &f), f, "atmosphere field");
+  }
+  static FieldPtr grid(const std::vector<double>& values, const uint32_t dims[3], const V3& origin, const V3& spacing) {
+    arcus_field_t* f = nullptr;
+    return check(arcus_field_create_grid(ctx_, values.data(), dims, origin.data(), spacing.data(), &f), f,
+                 "grid field");
+  }
+  // n and ∇n of a field at one point (host evaluation, the kernels' formulas).
+  static double n_at(arcus_field_t* f, const V3& p, V3* grad = nullptr) {
+    double n = std::numeric_limits<double>::quiet_NaN();
+    V3 g{};
+    const arcus_status st = arcus_field_evaluate(f, 1, p.data(), &n, g.data());
+    EXPECT_EQ(st, ARCUS_SUCCESS) << last_error();
+    if (grad) *grad = g;
+    return n;
+  }
+
+ private:
+  static inline arcus_context_t* ctx_ = nullptr;
+};
+
+// ---- advance parameters ------------------------------------------------------------
+inline arcus_advance_params dp45(double length, double rtol, double atol) {
+  arcus_advance_params p;
+  arcus_advance_params_init(&p);
+  p.method = ARCUS_METHOD_DP45;
+  p.length = length;
+  p.rtol = rtol;
+  p.atol = atol;
+  return p;
+}
+inline arcus_advance_params fixed(arcus_method method, double step, double length) {
+  arcus_advance_params p;
+  arcus_advance_params_init(&p);
+  p.method = method;
+  p.step = step;
+  p.length = length;
+  return p;
+}
+
+// ---- rays in, results out ----------------------------------------------------------
+struct Rays {
+  std::vector<double> origins, directions;
+  void add(const V3& o, const V3& d) {
+    origins.insert(origins.end(), o.begin(), o.end());
+    directions.insert(directions.end(), d.begin(), d.end());
+  }
+  size_t size() const { return origins.size() / 3; }
+  V3 origin(size_t i) const { return {origins[3 * i], origins[3 * i + 1], origins[3 * i + 2]}; }
+  V3 direction(size_t i) const { return {directions[3 * i], directions[3 * i + 1], directions[3 * i + 2]}; }
+};
+
+struct Trace {
+  arcus_status status = ARCUS_ERROR_INVALID_ARGUMENT;
+  JobPtr job;
+  std::vector<double> positions, directions, lengths;
+  std::vector<uint64_t> steps;
+  std::vector<int32_t> ray_status;
+  uint32_t features = 0;
+
+  size_t size() const { return lengths.size(); }
+  V3 pos(size_t i) const { return {positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]}; }
+  V3 dir(size_t i) const { return {directions[3 * i], directions[3 * i + 1], directions[3 * i + 2]}; }
+  uint64_t max_steps() const { return steps.empty() ? 0 : *std::max_element(steps.begin(), steps.end()); }
+};
+
+// Runs arcus_advance and reads back every end state (when a job came back).
+inline Trace trace(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params& params, const Rays& rays) {
+  Trace t;
+  arcus_job_t* job = nullptr;
+  t.status = arcus_advance(ctx, field, &params, rays.size(), rays.origins.data(), rays.directions.data(), &job);
+  t.job.reset(job);
+  if (!job) return t;
+  size_t count = 0;
+  EXPECT_EQ(arcus_job_get_count(job, &count), ARCUS_SUCCESS);
+  EXPECT_EQ(count, rays.size());
+  t.positions.assign(3 * count, 0.0);
+  t.directions.assign(3 * count, 0.0);
+  t.lengths.assign(count, 0.0);
+  t.steps.assign(count, 0);
+  t.ray_status.assign(count, -1);
+  EXPECT_EQ(arcus_job_get_end_states(job, t.positions.data(), t.directions.data(), t.steps.data(),
+                                     t.ray_status.data(), t.lengths.data()),
+            ARCUS_SUCCESS);
+  EXPECT_EQ(arcus_job_get_features(job, &t.features), ARCUS_SUCCESS);
+  return t;
+}
+
+// ---- error bounds --------------------------------------------------------------------
+// Global end-point error bound of an adaptive DP45 run over arc length L in which the
+// controller accepted `steps` steps.  Each accepted step commits a local error of at most
+// (atol + rtol·|y|) per component of y = (r, v) — times √6 because the controller may
+// use an RMS norm over the six components — and an error δv in v = n·dr/ds at arc s moves
+// the end point by at most δv·(L − s)/n_min.  Summing over the steps, with |r| ≤ r_max
+// and |v| ≤ n_max along the path:
+//   |Δr| ≤ √6 · steps · [(atol + rtol·r_max) + (atol + rtol·n_max)·L/n_min] · amplification.
+// `amplification` bounds how much nearby rays diverge (1 for non-focusing media).
+inline double dp45_bound(uint64_t steps, double rtol, double atol, double r_max, double n_max, double n_min,
+                         double L, double amplification = 1.0) {
+  return std::sqrt(6.0) * double(steps) * ((atol + rtol * r_max) + (atol + rtol * n_max) * L / n_min) *
+         amplification;
+}
+
+// ---- closed-form ray paths -------------------------------------------------------------
+struct RayState {
+  V3 pos, dir;
+};
+
+// Catenary: n = n0 + G·r.  Write ĝ = G/|G|, g = |G| and "height" y = ĝ·r.  With
+// v = n dr/ds the ray equation is dv/ds = G, so the component of v across ĝ is constant
+// (A, along the unit ĥ) and v·ĝ = v_y0 + g·s.  Parametrise v·ĝ = A sinh u, n = A cosh u:
+// du/ds = g/(A cosh u), hence the horizontal coordinate is C + A u/g and the height is
+// (A cosh u − n0)/g.  With u0 = asinh(v_y0/A), u_end = asinh(sinh u0 + g L/A):
+//   x_end − x0 = A (u_end − u0)/g,  y_end = (A cosh u_end − n0)/g.
+// A ray along ±ĝ (A = 0) stays straight.
+inline RayState catenary_end(double n0, const V3& G, const V3& r0, const V3& d, double L) {
+  const V3 dh = normalize(d);
+  const double g = norm(G);
+  const V3 gh = G / g;
+  const double n_start = n0 + dot(G, r0);
+  const V3 v = n_start * dh;
+  const double vy = dot(v, gh);
+  const V3 vh = v - vy * gh;
+  const double A = norm(vh);
+  if (A == 0.0) return {r0 + L * dh, dh};
+  const V3 hh = vh / A;
+  const double u0 = std::asinh(vy / A);
+  const double u1 = std::asinh((vy + g * L) / A);
+  const double y0 = dot(r0, gh);
+  const double y1 = (A * std::cosh(u1) - n0) / g;
+  const V3 pos = r0 + (A * (u1 - u0) / g) * hh + (y1 - y0) * gh;
+  const V3 dir = normalize(A * hh + (vy + g * L) * gh);
+  return {pos, dir};
+}
+
+// Linear n²: n² = a + K·r.  With dτ = ds/n the ray equation becomes d²r/dτ² = ∇(n²)/2 =
+// K/2, so v(τ) = v0 + Kτ/2 and r(τ) = r0 + v0 τ + K τ²/4 (a parabola), and
+// s(τ) = ∫0^τ |v| dτ' = ∫0^τ sqrt(α t² + β t + γ) dt with α = |K|²/4, β = v0·K, γ = |v0|².
+// Completing the square (w = t + β/2α, m = |K × v0|·2/|K|²):
+//   ∫ sqrt(α (w² + m²)) dw = √α/2 · [w sqrt(w² + m²) + m² asinh(w/m)].
+// Newton on s(τ) = L (s' = |v| > 0, s convex enough that it converges from τ = L/n0).
+inline RayState linear_n2_end(double a, const V3& K, const V3& r0, const V3& d, double L) {
+  const V3 dh = normalize(d);
+  const double n_start = std::sqrt(a + dot(K, r0));
+  const V3 v0 = n_start * dh;
+  const double K2 = dot(K, K);
+  const double alpha = K2 / 4.0;
+  const double m = 2.0 * norm(cross(K, v0)) / K2;
+  const double w0 = 2.0 * dot(v0, K) / K2;
+  auto F = [&](double w) {
+    const double body = m > 0.0 ? w * std::sqrt(w * w + m * m) + m * m * std::asinh(w / m) : w * std::fabs(w);
+    return std::sqrt(alpha) / 2.0 * body;
+  };
+  auto S = [&](double t) { return F(t + w0) - F(w0); };
+  double tau = L / n_start;
+  for (int i = 0; i < 100; ++i) {
+    const double speed = norm(v0 + (tau / 2.0) * K);
+    const double dt = (S(tau) - L) / speed;
+    tau -= dt;
+    if (std::fabs(dt) <= 1e-16 * std::fabs(tau)) break;
+  }
+  const V3 v = v0 + (tau / 2.0) * K;
+  return {r0 + tau * v0 + (tau * tau / 4.0) * K, normalize(v)};
+}
+
+// Maxwell's fish-eye n = n0/(1 + |r − c|²/R²): every ray is a circle, and every ray
+// through a point p (relative to c) also passes through p' = −R² p/|p|².  The circle
+// through p tangent to d lies in the plane of p and d (the field is central); its centre
+// is q = p + ρ m with m the unit normal of d in that plane and the signed radius ρ fixed
+// by |q − p'| = |ρ|:  ρ = −|p − p'|² / (2 m·(p − p')).  After arc L (angle φ = L/|ρ|):
+//   r = q + cos φ (p − q) + |ρ| sin φ d,   d_end = cos φ d − sin φ (p − q)/|ρ|.
+// p must not be parallel to d (a ray through the centre is a straight line).
+inline RayState fisheye_end(const V3& c, double R, const V3& P, const V3& d, double L) {
+  const V3 dh = normalize(d);
+  const V3 p = P - c;
+  const V3 pp = (-R * R / dot(p, p)) * p;
+  const V3 m = normalize(p - dot(p, dh) * dh);
+  const double rho = -dot(p - pp, p - pp) / (2.0 * dot(m, p - pp));
+  const V3 q = p + rho * m;
+  const double r = std::fabs(rho);
+  const double phi = L / r;
+  return {c + q + std::cos(phi) * (p - q) + (r * std::sin(phi)) * dh,
+          normalize(std::cos(phi) * dh - (std::sin(phi) / r) * (p - q))};
+}
+
+}  // namespace arcus_test
+
+#endif  // ARCUS_TESTS_TEST_UTIL_H
