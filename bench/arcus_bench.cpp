@@ -202,6 +202,7 @@ struct Row {
   Setting setting;
   unsigned threads = 0;  // peer threads (0 for arcus)
   std::size_t rays = 0;
+  std::size_t launches = 1;    // timed runs behind `seconds` (their median)
   double mean_steps = 0;       // accepted steps per ray
   double seconds = 0;          // arcus: kernel (device) time; peer: wall time
   double wall_seconds = 0;     // arcus: all of arcus_advance; peer: = seconds
@@ -256,9 +257,13 @@ class ArcusBench {
 
   const arcus_device_info& device() const { return device_; }
 
-  // Measures `s` with about `seconds` of kernel time and at least `min_rays` rays;
-  // `repeats` > 1 reports the run with the median kernel time.
-  Row measure(const Setting& s, double seconds, std::size_t min_rays, int repeats) {
+  // Measures `s` over about `seconds` of kernel time with at least `min_rays` rays and
+  // `min_repeats` launches, and reports the median launch.  The ray count comes from a
+  // probe launch; when even the most rays make a short kernel, the launch is repeated
+  // instead: one launch of a few milliseconds is at the mercy of scheduling noise, the
+  // median of many is not.
+  Row measure(const Setting& s, double seconds, std::size_t min_rays, int min_repeats) {
+    constexpr std::size_t kMaxLaunches = 25;
     const std::size_t fill = warm_up(s);
     const std::size_t probe_rays = std::min(rays_.count(), round_up(std::max(min_rays, fill), fill));
     Run probe = run(s, probe_rays);
@@ -266,14 +271,20 @@ class ArcusBench {
     const std::size_t wanted = static_cast<std::size_t>(seconds / per_ray);
     const std::size_t count = std::clamp(wanted / fill * fill, probe_rays, rays_.count());
 
-    std::vector<Run> runs;
-    if (count == probe_rays && repeats == 1)
-      runs.push_back(std::move(probe));
-    else
-      for (int r = 0; r < repeats; ++r) runs.push_back(run(s, count));
-    std::sort(runs.begin(), runs.end(),
-              [](const Run& a, const Run& b) { return a.stats.kernel_seconds < b.stats.kernel_seconds; });
-    return summarize(s, runs[runs.size() / 2]);
+    // Launches of the same rays give the same results; only their times differ.
+    Run result = count == probe_rays ? std::move(probe) : run(s, count);
+    std::vector<double> kernel{result.stats.kernel_seconds}, wall{result.stats.total_seconds};
+    while (kernel.size() < static_cast<std::size_t>(min_repeats) ||
+           (std::accumulate(kernel.begin(), kernel.end(), 0.0) < seconds && kernel.size() < kMaxLaunches)) {
+      const Run again = run(s, count);
+      kernel.push_back(again.stats.kernel_seconds);
+      wall.push_back(again.stats.total_seconds);
+    }
+    Row row = summarize(s, result);
+    row.seconds = median(kernel);
+    row.wall_seconds = median(wall);
+    row.launches = kernel.size();
+    return row;
   }
 
  private:
@@ -286,6 +297,11 @@ class ArcusBench {
   };
 
   static constexpr const char* kLayoutVariables[2] = {"ARCUS_LANES", "ARCUS_GROUPS"};
+
+  static double median(std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  }
 
   static std::size_t round_up(std::size_t n, std::size_t multiple) { return (n + multiple - 1) / multiple * multiple; }
 
@@ -376,20 +392,28 @@ class ArcusBench {
   std::map<std::tuple<arcus_method, arcus_precision, std::pair<uint32_t, uint32_t>>, std::size_t> fill_;
 };
 
-// The peer on the first `count` rays at tolerance `tol`; median wall time of `repeats`.
-Row measure_peer(const RaySet& rays, std::size_t count, double tol, unsigned threads, int repeats) {
-  std::vector<bench::PeerRun> runs;
-  for (int r = 0; r < repeats; ++r)
-    runs.push_back(bench::run_odeint_dopri5(rays, count, kN0, kGradient, kLength, tol, tol * kAtolPerTol, threads));
-  std::sort(runs.begin(), runs.end(), [](const auto& a, const auto& b) { return a.seconds < b.seconds; });
-  const bench::PeerRun& run = runs[runs.size() / 2];
+// The peer on the first `count` rays at tolerance `tol`: the median wall time of at
+// least `min_repeats` runs, repeated (like arcus' launches) until `seconds` are in.
+Row measure_peer(const RaySet& rays, std::size_t count, double tol, unsigned threads, double seconds,
+                 int min_repeats) {
+  constexpr std::size_t kMaxRuns = 25;
+  auto integrate = [&] {
+    return bench::run_odeint_dopri5(rays, count, kN0, kGradient, kLength, tol, tol * kAtolPerTol, threads);
+  };
+  const bench::PeerRun run = integrate();
+  std::vector<double> times{run.seconds};
+  while (times.size() < static_cast<std::size_t>(min_repeats) ||
+         (std::accumulate(times.begin(), times.end(), 0.0) < seconds && times.size() < kMaxRuns))
+    times.push_back(integrate().seconds);
+  std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
   Row row;
   row.impl = "odeint";
   row.setting = {ARCUS_METHOD_DP45, ARCUS_PRECISION_DOUBLE, 0, tol, kLength, kGradient};
   row.threads = threads;
   row.rays = count;
   row.mean_steps = std::accumulate(run.steps.begin(), run.steps.end(), 0.0) / static_cast<double>(count);
-  row.seconds = row.wall_seconds = run.seconds;
+  row.seconds = row.wall_seconds = times[times.size() / 2];
+  row.launches = times.size();
   fill_errors(row, bench::end_point_errors(rays, count, run.positions.data(), kN0, kGradient, kLength));
   return row;
 }
@@ -399,10 +423,10 @@ void print_row(const Row& r) {
   const Setting& s = r.setting;
   const std::string layout = r.impl == "arcus" ? std::to_string(r.lanes) + "x" + std::to_string(r.groups)
                                                : std::to_string(r.threads) + " thr";
-  std::printf("  %-6s %-5s %-6s %s=%-8.3g L=%-6g g=%-5g %-5s rays=%-6zu steps/ray=%-9.4g time/ray=%-9.3g "
+  std::printf("  %-6s %-5s %-6s %s=%-8.3g L=%-6g g=%-5g %-5s rays=%-5zux%-2zu steps/ray=%-9.4g time/ray=%-9.3g "
               "steps/s=%-9.3g err max=%-9.3g mean=%-9.3g%s\n",
               r.impl.c_str(), method_name(s.method), precision_name(s.precision), adaptive(s) ? "tol " : "step",
-              adaptive(s) ? s.tol : s.step, s.length, s.gradient, layout.c_str(), r.rays, r.mean_steps,
+              adaptive(s) ? s.tol : s.step, s.length, s.gradient, layout.c_str(), r.rays, r.launches, r.mean_steps,
               r.time_per_ray(), r.steps_per_second(), r.err_max, r.err_mean,
               r.not_done ? (" NOT DONE: " + std::to_string(r.not_done)).c_str() : "");
   std::fflush(stdout);
@@ -508,9 +532,9 @@ struct DpComparison {
 // loosest (cheapest) tighter tolerance of the sweep at which arcus matches the peer.
 DpComparison compare_dp45(ArcusBench& arcus, const RaySet& rays, const Plan& p, const std::vector<Row>& tol_rows) {
   DpComparison c;
-  c.peer = measure_peer(rays, p.peer_rays, kHeadlineTol, 1, p.headline_repeats);
+  c.peer = measure_peer(rays, p.peer_rays, kHeadlineTol, 1, p.headline_seconds, p.headline_repeats);
   c.peer_all_cores = measure_peer(rays, p.peer_rays, kHeadlineTol, std::max(1u, std::thread::hardware_concurrency()),
-                                  p.headline_repeats);
+                                  p.headline_seconds, p.headline_repeats);
   double tol = kHeadlineTol;
   c.arcus_reaches_peer_error = false;
   for (const Row& r : tol_rows) {  // loosest first
@@ -560,14 +584,14 @@ std::string fmt(const char* f, double v) {
 
 void write_csv(const fs::path& path, const std::vector<Row>& rows) {
   std::ofstream out(path);
-  out << "impl,method,precision,threads,step,tol,length,gradient,rays,mean_steps,seconds,wall_seconds,"
+  out << "impl,method,precision,threads,step,tol,length,gradient,rays,launches,mean_steps,seconds,wall_seconds,"
          "time_per_ray_s,rays_per_s,steps_per_s,err_max_m,err_mean_m,not_done,lanes,groups\n";
   out.precision(9);
   for (const Row& r : rows) {
     const Setting& s = r.setting;
     out << r.impl << ',' << method_name(s.method) << ',' << precision_name(s.precision) << ',' << r.threads << ','
         << (adaptive(s) ? 0.0 : s.step) << ',' << (adaptive(s) ? s.tol : 0.0) << ',' << s.length << ',' << s.gradient
-        << ',' << r.rays << ',' << r.mean_steps << ',' << r.seconds << ',' << r.wall_seconds << ',' << r.time_per_ray()
+        << ',' << r.rays << ',' << r.launches << ',' << r.mean_steps << ',' << r.seconds << ',' << r.wall_seconds << ',' << r.time_per_ray()
         << ',' << r.rays_per_second() << ',' << r.steps_per_second() << ',' << r.err_max << ',' << r.err_mean << ','
         << r.not_done << ',' << r.lanes << ',' << r.groups << '\n';
   }
@@ -581,15 +605,15 @@ void write_peak_csv(const fs::path& path, const PeakComparison& c) {
 
 std::string markdown_table(const std::vector<Row>& rows) {
   std::ostringstream md;
-  md << "| impl | method | precision | step / tol | length m | gradient | rays | steps/ray | time/ray s | rays/s "
-        "| steps/s | max err m | mean err m | not done | lanes×groups |\n"
+  md << "| impl | method | precision | step / tol | length m | gradient | rays × launches | steps/ray | time/ray s "
+        "| rays/s | steps/s | max err m | mean err m | not done | lanes×groups |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Row& r : rows) {
     const Setting& s = r.setting;
     const std::string impl = r.impl == "odeint" ? "odeint ×" + std::to_string(r.threads) : r.impl;
     md << "| " << impl << " | " << method_name(s.method) << " | " << precision_name(s.precision) << " | "
        << (adaptive(s) ? "tol " + fmt("%.3g", s.tol) : "h " + fmt("%.3g", s.step)) << " | " << fmt("%g", s.length)
-       << " | " << fmt("%g", s.gradient) << " | " << r.rays << " | " << fmt("%.4g", r.mean_steps) << " | "
+       << " | " << fmt("%g", s.gradient) << " | " << r.rays << " × " << r.launches << " | " << fmt("%.4g", r.mean_steps) << " | "
        << fmt("%.3e", r.time_per_ray()) << " | " << fmt("%.3e", r.rays_per_second()) << " | "
        << fmt("%.3e", r.steps_per_second()) << " | " << fmt("%.2e", r.err_max) << " | " << fmt("%.2e", r.err_mean)
        << " | " << r.not_done << " | "
@@ -617,9 +641,18 @@ std::string float_summary(const std::vector<Row>& rows) {
 
 struct Machine {
   std::string cpu, date, device, platform, device_version, arcus_version;
+  std::string load_before, load_after;  // other work on the cores skews every timing
   unsigned cores = 0;
   uint32_t compute_units = 0, lanes = 0;
 };
+
+// The 1, 5 and 15 minute load averages.
+std::string load_average() {
+  std::ifstream in("/proc/loadavg");
+  std::string a, b, c;
+  in >> a >> b >> c;
+  return a + " " + b + " " + c;
+}
 
 std::string cpu_model() {
   std::ifstream in("/proc/cpuinfo");
@@ -631,6 +664,7 @@ std::string cpu_model() {
 Machine describe_machine(const arcus_device_info& dev) {
   Machine m;
   m.cpu = cpu_model();
+  m.load_before = load_average();
   m.cores = std::thread::hardware_concurrency();
   char date[64];
   const std::time_t now = std::time(nullptr);
@@ -685,6 +719,7 @@ void write_markdown(const fs::path& path, const Machine& m, const Plan& p, const
      << "- CPU: " << m.cpu << ", " << m.cores << " hardware threads\n"
      << "- device: " << m.device << " (" << m.platform << ", " << m.device_version << "), " << m.compute_units
      << " compute units, " << m.lanes << " lanes\n"
+     << "- load average (1/5/15 min) before the run: " << m.load_before << ", after: " << m.load_after << "\n"
      << "- arcus " << m.arcus_version << "; time per ray = kernel seconds (arcus_job_stats) / rays, after an untimed "
         "warm-up per kernel variant; peer times are wall clock\n"
      << "- DP45 and the peer use rtol = tol, atol = tol·1e-3; errors are max / mean over the rays of each point\n\n";
@@ -748,7 +783,7 @@ int run_benchmark(const Options& opt) {
   ContextPtr ctx(raw_ctx);
   const RaySet rays = bench::make_rays(std::max(plan.max_rays, plan.peer_rays));
   ArcusBench arcus(ctx.get(), rays);
-  const Machine machine = describe_machine(arcus.device());
+  Machine machine = describe_machine(arcus.device());
   std::printf("arcus_bench%s on %s (%s)\n", opt.quick ? " --quick" : "", machine.device.c_str(), machine.cpu.c_str());
 
   Results r;
@@ -759,7 +794,7 @@ int run_benchmark(const Options& opt) {
   std::printf("(b, d) peer: Boost.Odeint dopri5 against tolerance\n");
   for (unsigned threads : {1u, std::max(1u, std::thread::hardware_concurrency())})
     for (double tol : plan.tolerances) {
-      r.peer.push_back(measure_peer(rays, plan.peer_rays, tol, threads, 1));
+      r.peer.push_back(measure_peer(rays, plan.peer_rays, tol, threads, plan.point_seconds, 1));
       print_row(r.peer.back());
     }
   std::printf("(e, f) against distance\n");
@@ -789,6 +824,7 @@ int run_benchmark(const Options& opt) {
   write_csv(out_dir / "headline.csv", {r.dp.arcus, r.dp.peer, r.dp.peer_all_cores, r.peak.rk4});
   write_peak_csv(out_dir / "fp64_peak.csv", r.peak);
   if (!r.layout.empty()) write_csv(out_dir / "layout.csv", r.layout);
+  machine.load_after = load_average();
   write_markdown(out_dir / "results.md", machine, plan, r, opt.quick);
   if (opt.plot) run_plot_script(out_dir);
 

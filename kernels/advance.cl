@@ -19,7 +19,7 @@ typedef struct ray6 {
 } ray6;
 
 /* The right-hand side of the ray equation. */
-inline ray6 ray_derivative(const field_desc* f, __global const REAL* data, ray6 y) {
+ARCUS_INLINE ray6 ray_derivative(const field_desc* f, __global const REAL* data, ray6 y) {
   ray6 d;
   REALV n;
   field_eval(f, data, y.x, y.y, y.z, &n, &d.vx, &d.vy, &d.vz);
@@ -31,7 +31,7 @@ inline ray6 ray_derivative(const field_desc* f, __global const REAL* data, ray6 
 }
 
 /* c·k */
-inline ray6 ray_scale(ray6 k, REAL c) {
+ARCUS_INLINE ray6 ray_scale(ray6 k, REAL c) {
   ray6 r;
   r.x = c * k.x;
   r.y = c * k.y;
@@ -43,7 +43,7 @@ inline ray6 ray_scale(ray6 k, REAL c) {
 }
 
 /* h·k, h per lane */
-inline ray6 ray_times(ray6 k, REALV h) {
+ARCUS_INLINE ray6 ray_times(ray6 k, REALV h) {
   ray6 r;
   r.x = h * k.x;
   r.y = h * k.y;
@@ -55,7 +55,7 @@ inline ray6 ray_times(ray6 k, REALV h) {
 }
 
 /* acc + c·k */
-inline ray6 ray_fma(ray6 k, REAL c, ray6 acc) {
+ARCUS_INLINE ray6 ray_fma(ray6 k, REAL c, ray6 acc) {
   ray6 r;
   r.x = fma((REALV)c, k.x, acc.x);
   r.y = fma((REALV)c, k.y, acc.y);
@@ -67,7 +67,7 @@ inline ray6 ray_fma(ray6 k, REAL c, ray6 acc) {
 }
 
 /* y + h·t, h per lane */
-inline ray6 ray_step(ray6 y, REALV h, ray6 t) {
+ARCUS_INLINE ray6 ray_step(ray6 y, REALV h, ray6 t) {
   ray6 r;
   r.x = fma(h, t.x, y.x);
   r.y = fma(h, t.y, y.y);
@@ -79,7 +79,7 @@ inline ray6 ray_step(ray6 y, REALV h, ray6 t) {
 }
 
 /* b where m holds, else a */
-inline ray6 ray_select(ray6 a, ray6 b, MASKV m) {
+ARCUS_INLINE ray6 ray_select(ray6 a, ray6 b, MASKV m) {
   ray6 r;
   r.x = SEL(a.x, b.x, m);
   r.y = SEL(a.y, b.y, m);
@@ -90,40 +90,56 @@ inline ray6 ray_select(ray6 a, ray6 b, MASKV m) {
   return r;
 }
 
-inline MASKV ray_finite(ray6 y) { return isfinite(y.x + y.y + y.z + y.vx + y.vy + y.vz); }
+ARCUS_INLINE MASKV ray_finite(ray6 y) { return isfinite(y.x + y.y + y.z + y.vx + y.vy + y.vz); }
+
+/* The groups advance in lockstep, one stage at a time for all of them, so each stage
+ * offers ARCUS_GROUPS independent dependency chains to the core (a single chain is
+ * latency-bound: measured 3× slower).  FOR_GROUPS loops are fully unrolled. */
+#define FOR_GROUPS(g) _Pragma("unroll") for (int g = 0; g < ARCUS_GROUPS; ++g)
 
 /* ---------------------------------------------------------------- fixed steps */
+/* y_new[g] = one step of length h from y[g], for every group. */
 #if defined(ARCUS_METHOD_STRAIGHT) || defined(ARCUS_METHOD_EULER)
 /* Straight: a constant field has ∇n = 0, so one step r + L·v/n is exact. */
-inline ray6 fixed_step(const field_desc* f, __global const REAL* data, ray6 y, REALV h) {
-  return ray_step(y, h, ray_derivative(f, data, y));
+ARCUS_INLINE void fixed_step(const field_desc* f, __global const REAL* data, const ray6* y, ray6* y_new, REALV h) {
+  FOR_GROUPS(g) y_new[g] = ray_step(y[g], h, ray_derivative(f, data, y[g]));
 }
 #elif defined(ARCUS_METHOD_RK2)
 /* Explicit midpoint. */
-inline ray6 fixed_step(const field_desc* f, __global const REAL* data, ray6 y, REALV h) {
-  ray6 k1 = ray_derivative(f, data, y);
-  ray6 k2 = ray_derivative(f, data, ray_step(y, RC(0.5) * h, k1));
-  return ray_step(y, h, k2);
+ARCUS_INLINE void fixed_step(const field_desc* f, __global const REAL* data, const ray6* y, ray6* y_new, REALV h) {
+  ray6 k[ARCUS_GROUPS];
+  FOR_GROUPS(g) k[g] = ray_derivative(f, data, y[g]);
+  FOR_GROUPS(g) k[g] = ray_derivative(f, data, ray_step(y[g], RC(0.5) * h, k[g]));
+  FOR_GROUPS(g) y_new[g] = ray_step(y[g], h, k[g]);
 }
 #elif defined(ARCUS_METHOD_RK4)
-/* Classical fourth order. */
-inline ray6 fixed_step(const field_desc* f, __global const REAL* data, ray6 y, REALV h) {
-  REALV half_h = RC(0.5) * h;
-  ray6 k1 = ray_derivative(f, data, y);
-  ray6 k2 = ray_derivative(f, data, ray_step(y, half_h, k1));
-  ray6 k3 = ray_derivative(f, data, ray_step(y, half_h, k2));
-  ray6 k4 = ray_derivative(f, data, ray_step(y, h, k3));
-  ray6 t = ray_fma(k2, RC(2), k1);
-  t = ray_fma(k3, RC(2), t);
-  t = ray_fma(k4, RC(1), t);
-  return ray_step(y, h * RC(1.0 / 6.0), t);
+/* Classical fourth order: k = k1..k4 in turn, acc = k1 + 2 k2 + 2 k3 + k4. */
+ARCUS_INLINE void fixed_step(const field_desc* f, __global const REAL* data, const ray6* y, ray6* y_new, REALV h) {
+  const REALV half_h = RC(0.5) * h;
+  ray6 k[ARCUS_GROUPS], acc[ARCUS_GROUPS];
+  FOR_GROUPS(g) {
+    k[g] = ray_derivative(f, data, y[g]);
+    acc[g] = k[g];
+  }
+  FOR_GROUPS(g) {
+    k[g] = ray_derivative(f, data, ray_step(y[g], half_h, k[g]));
+    acc[g] = ray_fma(k[g], RC(2), acc[g]);
+  }
+  FOR_GROUPS(g) {
+    k[g] = ray_derivative(f, data, ray_step(y[g], half_h, k[g]));
+    acc[g] = ray_fma(k[g], RC(2), acc[g]);
+  }
+  FOR_GROUPS(g) {
+    k[g] = ray_derivative(f, data, ray_step(y[g], h, k[g]));
+    y_new[g] = ray_step(y[g], h * RC(1.0 / 6.0), ray_fma(k[g], RC(1), acc[g]));
+  }
 }
 #endif
 
 /* ---------------------------------------------------------------- box and path */
 #ifdef ARCUS_FEATURE_BOX
 /* Shrinks t, the fraction of the step p0 → p1 that stays inside [lo, hi]. */
-inline REALV box_axis_fraction(REALV t, REALV p0, REALV p1, REAL lo, REAL hi) {
+ARCUS_INLINE REALV box_axis_fraction(REALV t, REALV p0, REALV p1, REAL lo, REAL hi) {
   t = SEL(t, fmin(t, (hi - p0) / (p1 - p0)), p1 > hi);
   t = SEL(t, fmin(t, (lo - p0) / (p1 - p0)), p1 < lo);
   return t;
@@ -131,7 +147,7 @@ inline REALV box_axis_fraction(REALV t, REALV p0, REALV p1, REAL lo, REAL hi) {
 
 /* Lanes in `moved` whose step y0 → *y1 left the box end where the chord crosses the
  * face (linear interpolation: exact for straight rays, O(h²·curvature) otherwise). */
-inline MASKV clip_to_box(const advance_desc* job, ray6 y0, REALV s0, ray6* y1, REALV* s1, MASKV moved) {
+ARCUS_INLINE MASKV clip_to_box(const advance_desc* job, ray6 y0, REALV s0, ray6* y1, REALV* s1, MASKV moved) {
   REALV t = RC(1);
   t = box_axis_fraction(t, y0.x, y1->x, job->box_min[0], job->box_max[0]);
   t = box_axis_fraction(t, y0.y, y1->y, job->box_min[1], job->box_max[1]);
@@ -143,7 +159,7 @@ inline MASKV clip_to_box(const advance_desc* job, ray6 y0, REALV s0, ray6* y1, R
   return left;
 }
 
-inline MASKV outside_box(const advance_desc* job, ray6 y) {
+ARCUS_INLINE MASKV outside_box(const advance_desc* job, ray6 y) {
   return (y.x < job->box_min[0]) | (y.x > job->box_max[0]) | (y.y < job->box_min[1]) | (y.y > job->box_max[1]) |
          (y.z < job->box_min[2]) | (y.z > job->box_max[2]);
 }
@@ -152,7 +168,7 @@ inline MASKV outside_box(const advance_desc* job, ray6 y) {
 #ifdef ARCUS_FEATURE_RECORD_PATH
 /* Appends the current point of the lanes in `moved`; counts every point, so a count
  * above the capacity tells the host how much room the path needed. */
-inline void record_point(__global REAL* path, int capacity, size_t first_ray, ray6 y, MASKV moved, IDXV* count) {
+ARCUS_INLINE void record_point(__global REAL* path, int capacity, size_t first_ray, ray6 y, MASKV moved, IDXV* count) {
   REAL xs[ARCUS_LANES], ys[ARCUS_LANES], zs[ARCUS_LANES];
   IDX cs[ARCUS_LANES], ms[ARCUS_LANES];
   VSTORE(y.x, 0, xs);
@@ -211,7 +227,7 @@ inline void record_point(__global REAL* path, int capacity, size_t first_ray, ra
 
 /* Largest |err_i| / (atol + rtol·max(|y_i|, |y5_i|)) over the six components. */
 #define DP_ERR_TERM(c) fabs(err.c) / (job->atol + job->rtol * fmax(fabs(y.c), fabs(y5.c)))
-inline REALV dp_error_norm(const advance_desc* job, ray6 y, ray6 y5, ray6 err) {
+ARCUS_INLINE REALV dp_error_norm(const advance_desc* job, ray6 y, ray6 y5, ray6 err) {
   REALV e = DP_ERR_TERM(x);
   e = fmax(e, DP_ERR_TERM(y));
   e = fmax(e, DP_ERR_TERM(z));
@@ -223,61 +239,84 @@ inline REALV dp_error_norm(const advance_desc* job, ray6 y, ray6 y5, ray6 err) {
 /* Step-size factor 0.9·err^(−1/5) in [0.2, 5].  Computed in float with exp2/log2:
  * double pow costs ~100 ns on PoCL and the factor needs no more precision.  A NaN or
  * huge error (a non-finite trial state) takes the smallest factor. */
-inline REALV dp_step_factor(REALV err) {
+ARCUS_INLINE REALV dp_step_factor(REALV err) {
   err = SEL((REALV)RC(1e10), fmax(err, RC(1e-10)), err <= RC(1e10));
   FLOATV fac = 0.9f * exp2(-0.2f * log2(TO_FLOATV(err)));
   return TO_REALV(clamp(fac, 0.2f, 5.0f));
 }
 
-/* One trial step of every active lane: accept or reject it, adapt h. */
-inline void dp_attempt(const field_desc* f, __global const REAL* data, const advance_desc* job, ray6* y_io,
-                       ray6* k1_io, REALV* s_io, REALV* h_io, IDXV* steps, IDXV* rejections, IDXV* status,
-                       MASKV* accepted) {
+/* Accepts or rejects one group's trial step from y to y5 (error estimate err) and
+ * adapts its step size. */
+ARCUS_INLINE MASKV dp_decide(const advance_desc* job, ray6* y, ray6* k1, REALV* s, REALV* h, IDXV* steps,
+                       IDXV* rejections, IDXV* status, REALV h_try, MASKV last, ray6 y5, ray6 k7, ray6 err) {
   MASKV active = *status == (IDXV)ARCUS_STATUS_ACTIVE;
-  ray6 y = *y_io, k1 = *k1_io;
-  REALV remaining = job->length - *s_io;
-  MASKV last = remaining <= *h_io;
-  REALV h = SEL(*h_io, remaining, last);
-
-  ray6 t = ray_scale(k1, RC(A21));
-  ray6 k2 = ray_derivative(f, data, ray_step(y, h, t));
-  t = ray_fma(k2, RC(A32), ray_scale(k1, RC(A31)));
-  ray6 k3 = ray_derivative(f, data, ray_step(y, h, t));
-  t = ray_fma(k3, RC(A43), ray_fma(k2, RC(A42), ray_scale(k1, RC(A41))));
-  ray6 k4 = ray_derivative(f, data, ray_step(y, h, t));
-  t = ray_fma(k4, RC(A54), ray_fma(k3, RC(A53), ray_fma(k2, RC(A52), ray_scale(k1, RC(A51)))));
-  ray6 k5 = ray_derivative(f, data, ray_step(y, h, t));
-  t = ray_fma(k5, RC(A65), ray_fma(k4, RC(A64), ray_fma(k3, RC(A63), ray_fma(k2, RC(A62), ray_scale(k1, RC(A61))))));
-  ray6 k6 = ray_derivative(f, data, ray_step(y, h, t));
-  t = ray_fma(k6, RC(B6), ray_fma(k5, RC(B5), ray_fma(k4, RC(B4), ray_fma(k3, RC(B3), ray_scale(k1, RC(B1))))));
-  ray6 y5 = ray_step(y, h, t);
-  ray6 k7 = ray_derivative(f, data, y5);
-  t = ray_fma(k7, RC(E7), ray_fma(k6, RC(E6), ray_fma(k5, RC(E5), ray_fma(k4, RC(E4),
-                                                                            ray_fma(k3, RC(E3), ray_scale(k1, RC(E1)))))));
-  REALV norm = dp_error_norm(job, y, y5, ray_times(t, h));
-
+  REALV norm = dp_error_norm(job, *y, y5, err);
   MASKV accept = active & (norm <= RC(1));
   MASKV reject = active & !(norm <= RC(1));
-  *y_io = ray_select(y, y5, accept);
-  *k1_io = ray_select(k1, k7, accept);
-  *s_io = SEL(*s_io, SEL(*s_io + h, (REALV)job->length, last), accept);
+  *y = ray_select(*y, y5, accept);
+  *k1 = ray_select(*k1, k7, accept);
+  *s = SEL(*s, SEL(*s + h_try, (REALV)job->length, last), accept);
   *steps += ONE_IF(accept);
   *rejections = SEL(*rejections + ONE_IF(reject), (IDXV)0, accept);
 
-  REALV h_next = h * dp_step_factor(norm);
+  REALV h_next = h_try * dp_step_factor(norm);
   if (job->max_step > RC(0)) h_next = fmin(h_next, (REALV)job->max_step);
-  *h_io = SEL(*h_io, h_next, active);
+  *h = SEL(*h, h_next, active);
 
-  MASKV gave_up = reject & ((*rejections > (IDXV)job->max_rejections) | (h <= job->min_step));
+  MASKV gave_up = reject & ((*rejections > (IDXV)job->max_rejections) | (h_try <= job->min_step));
   *status = SEL(*status, (IDXV)ARCUS_STATUS_FAILED, gave_up);
   *status = SEL(*status, (IDXV)ARCUS_STATUS_DONE, accept & last);
   *status = SEL(*status, (IDXV)ARCUS_STATUS_STEP_LIMIT, accept & !last & (*steps >= (IDXV)job->max_steps));
-  *accepted = accept;
+  return accept;
+}
+
+/* One trial step of every active lane of every group (stages in lockstep). */
+ARCUS_INLINE void dp_attempt(const field_desc* f, __global const REAL* data, const advance_desc* job, ray6* y, ray6* k1,
+                       REALV* s, REALV* h, IDXV* steps, IDXV* rejections, IDXV* status, MASKV* accepted) {
+  ray6 k2[ARCUS_GROUPS], k3[ARCUS_GROUPS], k4[ARCUS_GROUPS], k5[ARCUS_GROUPS], k6[ARCUS_GROUPS];
+  ray6 k7[ARCUS_GROUPS], y5[ARCUS_GROUPS];
+  REALV h_try[ARCUS_GROUPS];
+  MASKV last[ARCUS_GROUPS];
+  FOR_GROUPS(g) {
+    REALV remaining = job->length - s[g];
+    last[g] = remaining <= h[g];
+    h_try[g] = SEL(h[g], remaining, last[g]);
+    k2[g] = ray_derivative(f, data, ray_step(y[g], h_try[g], ray_scale(k1[g], RC(A21))));
+  }
+  FOR_GROUPS(g) {
+    ray6 t = ray_fma(k2[g], RC(A32), ray_scale(k1[g], RC(A31)));
+    k3[g] = ray_derivative(f, data, ray_step(y[g], h_try[g], t));
+  }
+  FOR_GROUPS(g) {
+    ray6 t = ray_fma(k3[g], RC(A43), ray_fma(k2[g], RC(A42), ray_scale(k1[g], RC(A41))));
+    k4[g] = ray_derivative(f, data, ray_step(y[g], h_try[g], t));
+  }
+  FOR_GROUPS(g) {
+    ray6 t = ray_fma(k4[g], RC(A54), ray_fma(k3[g], RC(A53), ray_fma(k2[g], RC(A52), ray_scale(k1[g], RC(A51)))));
+    k5[g] = ray_derivative(f, data, ray_step(y[g], h_try[g], t));
+  }
+  FOR_GROUPS(g) {
+    ray6 t = ray_fma(k5[g], RC(A65),
+                     ray_fma(k4[g], RC(A64), ray_fma(k3[g], RC(A63), ray_fma(k2[g], RC(A62), ray_scale(k1[g], RC(A61))))));
+    k6[g] = ray_derivative(f, data, ray_step(y[g], h_try[g], t));
+  }
+  FOR_GROUPS(g) {
+    ray6 t = ray_fma(k6[g], RC(B6),
+                     ray_fma(k5[g], RC(B5), ray_fma(k4[g], RC(B4), ray_fma(k3[g], RC(B3), ray_scale(k1[g], RC(B1))))));
+    y5[g] = ray_step(y[g], h_try[g], t);
+    k7[g] = ray_derivative(f, data, y5[g]);
+  }
+  FOR_GROUPS(g) {
+    ray6 e = ray_fma(k7[g], RC(E7), ray_fma(k6[g], RC(E6), ray_fma(k5[g], RC(E5), ray_fma(k4[g], RC(E4),
+                     ray_fma(k3[g], RC(E3), ray_scale(k1[g], RC(E1)))))));
+    accepted[g] = dp_decide(job, &y[g], &k1[g], &s[g], &h[g], &steps[g], &rejections[g], &status[g], h_try[g],
+                            last[g], y5[g], k7[g], ray_times(e, h_try[g]));
+  }
 }
 
 /* First trial step when the caller gave none: 1% of the state's scale over the
  * derivative's (Hairer, Nørsett & Wanner's h0 heuristic, first stage), in [min, L]. */
-inline REALV dp_initial_step(const advance_desc* job, ray6 y, ray6 k) {
+ARCUS_INLINE REALV dp_initial_step(const advance_desc* job, ray6 y, ray6 k) {
 #define DP_SCALE(c) (job->atol + job->rtol * fabs(y.c))
   REALV d0 = fmax(fmax(fabs(y.x) / DP_SCALE(x), fabs(y.y) / DP_SCALE(y)), fabs(y.z) / DP_SCALE(z));
   d0 = fmax(d0, fmax(fmax(fabs(y.vx) / DP_SCALE(vx), fabs(y.vy) / DP_SCALE(vy)), fabs(y.vz) / DP_SCALE(vz)));
@@ -312,7 +351,7 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global REAL* rays_ou
 #endif
 
   /* Start: v = n(r0)·d/|d|.  Bad directions or origins are flagged, not advanced. */
-  for (int g = 0; g < ARCUS_GROUPS; ++g) {
+  FOR_GROUPS(g) {
     const size_t v = first_vector + g;
     REALV x = VLOAD(v, rays_in), yy = VLOAD(v, rays_in + stride), z = VLOAD(v, rays_in + 2 * stride);
     REALV dx = VLOAD(v, rays_in + 3 * stride), dy = VLOAD(v, rays_in + 4 * stride);
@@ -353,19 +392,24 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global REAL* rays_ou
    * is active (neighbouring rays take similar step counts, so idle lanes cost little). */
   for (;;) {
     MASKV alive = 0;
-    for (int g = 0; g < ARCUS_GROUPS; ++g) alive |= status[g] == (IDXV)ARCUS_STATUS_ACTIVE;
+    FOR_GROUPS(g) alive |= status[g] == (IDXV)ARCUS_STATUS_ACTIVE;
     if (!ANY(alive)) break;
-    for (int g = 0; g < ARCUS_GROUPS; ++g) {
-      ray6 y_old = y[g];
-      REALV s_old = s[g];
-      MASKV accepted;
-      dp_attempt(f, field_data, &job, &y[g], &k1[g], &s[g], &h[g], &steps[g], &rejections[g], &status[g],
-                 &accepted);
 #ifdef ARCUS_FEATURE_BOX
-      MASKV left = clip_to_box(&job, y_old, s_old, &y[g], &s[g], accepted & outside_box(&job, y[g]));
+    ray6 y_old[ARCUS_GROUPS];
+    REALV s_old[ARCUS_GROUPS];
+    FOR_GROUPS(g) {
+      y_old[g] = y[g];
+      s_old[g] = s[g];
+    }
+#endif
+    MASKV accepted[ARCUS_GROUPS];
+    dp_attempt(f, field_data, &job, y, k1, s, h, steps, rejections, status, accepted);
+    FOR_GROUPS(g) {
+#ifdef ARCUS_FEATURE_BOX
+      MASKV left = clip_to_box(&job, y_old[g], s_old[g], &y[g], &s[g], accepted[g] & outside_box(&job, y[g]));
       status[g] = SEL(status[g], (IDXV)ARCUS_STATUS_LEFT_BOX, left);
 #endif
-      RECORD(g, accepted);
+      RECORD(g, accepted[g]);
     }
   }
 #else
@@ -374,19 +418,20 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global REAL* rays_ou
    * box can stop rays early. */
   for (int k = 0; k < job.fixed_steps; ++k) {
     const REAL hk = (k == job.fixed_steps - 1) ? job.last_step : job.step;
-    for (int g = 0; g < ARCUS_GROUPS; ++g) {
-      ray6 y_new = fixed_step(f, field_data, y[g], (REALV)hk);
+    ray6 y_new[ARCUS_GROUPS];
+    fixed_step(f, field_data, y, y_new, (REALV)hk);
+    FOR_GROUPS(g) {
 #ifdef ARCUS_FEATURE_BOX
       MASKV active = status[g] == (IDXV)ARCUS_STATUS_ACTIVE;
       REALV s_new = s[g] + hk;
-      MASKV left = clip_to_box(&job, y[g], s[g], &y_new, &s_new, active & outside_box(&job, y_new));
-      y[g] = ray_select(y[g], y_new, active);
+      MASKV left = clip_to_box(&job, y[g], s[g], &y_new[g], &s_new, active & outside_box(&job, y_new[g]));
+      y[g] = ray_select(y[g], y_new[g], active);
       s[g] = SEL(s[g], s_new, active);
       steps[g] += ONE_IF(active);
       status[g] = SEL(status[g], (IDXV)ARCUS_STATUS_LEFT_BOX, left);
       RECORD(g, active);
 #else
-      y[g] = y_new;
+      y[g] = y_new[g];
       RECORD(g, status[g] == (IDXV)ARCUS_STATUS_ACTIVE);
 #endif
     }
@@ -395,7 +440,7 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global REAL* rays_ou
   /* The host chose fixed_steps as the least n with n·step >= length, or max_steps. */
   const int stopped_early = job.fixed_steps * job.step < job.length;
   const REAL s_end = stopped_early ? job.fixed_steps * job.step : job.length;
-  for (int g = 0; g < ARCUS_GROUPS; ++g) {
+  FOR_GROUPS(g) {
     MASKV active = status[g] == (IDXV)ARCUS_STATUS_ACTIVE;
 #ifndef ARCUS_FEATURE_BOX
     s[g] = SEL(s[g], (REALV)s_end, active);
@@ -407,7 +452,7 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global REAL* rays_ou
 #endif
 
   /* End states: position, unit direction v/|v|, arc length; invalid rays echo input. */
-  for (int g = 0; g < ARCUS_GROUPS; ++g) {
+  FOR_GROUPS(g) {
     const size_t v = first_vector + g;
     MASKV invalid = status[g] == (IDXV)ARCUS_STATUS_INVALID_INPUT;
     REALV inv_v = rsqrt(y[g].vx * y[g].vx + y[g].vy * y[g].vy + y[g].vz * y[g].vz);

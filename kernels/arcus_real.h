@@ -55,7 +55,7 @@
 #define TO_REALV(x) ARCUS_CAT(ARCUS_CAT(convert_, REAL), ARCUS_LANES)(x)
 #endif
 #define RC(x) ((REAL)(x))
-#define ARCUS_INLINE inline
+#define ARCUS_INLINE inline __attribute__((always_inline)) /* PoCL left big helpers out of line */
 #define ARCUS_GLOBAL __global
 
 #else

@@ -209,7 +209,9 @@ TEST_F(HardCases, NovayaZemlyaSunRaysAreStableOverAstronomicalDistance) {
         << "ray " << i;
     // The cold layer bends the sun's rays more than the standard atmosphere does
     // (that is the Novaya-Zemlya effect: the sun is seen when geometrically below the horizon).
-    if (i == 0) EXPECT_GT(bend, bend_std);
+    if (i == 0) {
+      EXPECT_GT(bend, bend_std);
+    }
   }
 }
 

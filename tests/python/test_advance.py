@@ -71,20 +71,40 @@ def test_tighter_tolerance_is_more_accurate(ctx):
     assert errors[0] > 10 * errors[1] > 100 * errors[2]
 
 
-def test_float_precision(ctx):
+# Float rounding is 2^-24 relative; on |r| <= 12 and a few roundings per stage that is
+# at most ~4 * 12 * 2^-24 = 3e-6 per step, which adds up like the local errors above.
+FLOAT_ROUNDING = 4 * 12 * 2.0**-24
+
+
+def test_float_precision_dp45(ctx):
     origins, directions = fan(8)
     length = 10.0
     double = ctx.advance(LINEAR, origins, directions, rtol=1e-10, atol=1e-12, length=length)
-    single = ctx.advance(LINEAR, origins, directions, rtol=1e-5, atol=1e-6, length=length, precision="float")
+    # Tolerances a float state can meet: rtol * |r| well above the rounding.
+    rtol, atol = 1e-6, 1e-7
+    single = ctx.advance(LINEAR, origins, directions, rtol=rtol, atol=atol, length=length, precision="float")
     assert "FLOAT" in single.features and "FLOAT" not in double.features
     assert np.all(single.status == arcus.RAY_DONE)
+    # Everything came back from float buffers.
+    np.testing.assert_array_equal(single.positions.astype(np.float32), single.positions)
     float_error, _ = catenary_error(single, origins, directions, length)
     double_error, _ = catenary_error(double, origins, directions, length)
-    # Float rounding (2^-24 relative, on |r| <= 12: ~7e-7 per operation) and the looser
-    # tolerance both add up over the steps: bounded like DP45 plus 4 roundings per step.
-    bound = dp45_bound(single.steps.max(), 1e-5, 1e-6, 12.0) + np.e * single.steps.max() * 4 * 12 * 2.0**-24
-    assert double_error < float_error < bound
-    assert float_error > 1e-8  # it really ran in float: double would be ~1e-10
+    steps = single.steps.max()
+    assert double_error < float_error < dp45_bound(steps, rtol, atol, 12.0) + np.e * steps * FLOAT_ROUNDING
+
+
+def test_float_precision_rk4(ctx):
+    """The same fixed steps in float and double: the difference is the rounding alone."""
+    origins, directions = fan(8)
+    length, step = 4.0, 0.1
+    double = ctx.advance(LINEAR, origins, directions, method="rk4", step=step, length=length)
+    single = ctx.advance(LINEAR, origins, directions, method="rk4", step=step, length=length, precision="float")
+    assert {"RK4", "FLOAT"} <= single.features
+    float_error, float_direction_error = catenary_error(single, origins, directions, length)
+    double_error, double_direction_error = catenary_error(double, origins, directions, length)
+    # RK4's truncation error at h = 0.1 is ~4e-10, far below float's rounding.
+    assert 100 * double_error < float_error < np.e * single.steps.max() * FLOAT_ROUNDING
+    assert 1e-9 < float_direction_error < 1e-5 and double_direction_error < 1e-14
 
 
 @pytest.mark.parametrize("method, order, step", [("euler", 1, 0.1), ("rk2", 2, 0.2), ("rk4", 4, 0.4)])
@@ -123,7 +143,8 @@ def test_max_steps_stops_rays(ctx):
 
 def test_dp45_gives_up_when_the_tolerance_cannot_be_met(ctx):
     origins, directions = fan(8)
-    result = ctx.advance(LINEAR, origins, directions, step=5.0, rtol=1e-14, atol=1e-16, max_rejections=0,
+    # Two rejections in a row (max_rejections=1) of steps far too long for the tolerance.
+    result = ctx.advance(LINEAR, origins, directions, step=5.0, rtol=1e-14, atol=1e-16, max_rejections=1,
                          length=10.0)
     assert np.all(result.status == arcus.RAY_FAILED)
 
@@ -175,14 +196,17 @@ def test_luneburg_lens_focuses_parallel_rays_on_its_far_side(ctx):
     offsets = np.linspace(-0.9, 0.9, 13) * radius
     origins = center + np.stack([np.full(13, -3 * radius), offsets, np.zeros(13)], axis=1)
     directions = np.tile([1.0, 0.0, 0.0], (13, 1))
+    # max_step: outside the lens n is constant, so DP45 grows its step until a step
+    # can jump over the lens with no stage inside it (the rays near the rim would pass
+    # straight through); a step below the lens' size keeps every ray sampling it.
     result = ctx.advance(Luneburg(center, radius), origins, directions, length=6 * radius, rtol=1e-11,
-                         atol=1e-13)
+                         atol=1e-13, max_step=0.25 * radius)
     assert np.all(result.status == arcus.RAY_DONE)
     focus = center + (radius, 0.0, 0.0)
     # Outside the lens rays are straight: each end ray, extended back, passes the focus.
     miss = np.linalg.norm(np.cross(focus - result.positions, result.directions), axis=1)
     # The index's gradient jumps at the surface, which costs DP45 some accuracy there.
-    assert miss.max() < 1e-6 * radius
+    assert miss.max() < 1e-9 * radius
     assert np.ptp(result.directions[:, 1]) > 1.0  # the beam really was bent, into a wide fan
 
 

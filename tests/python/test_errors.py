@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import arcus
-from arcus.media import Constant, Linear
+from arcus.media import Linear
 from closed_forms import fan
 
 LINEAR = Linear(1.0, (0.0, 0.1, 0.0))
@@ -92,7 +92,13 @@ def test_field_must_be_a_field(ctx):
 
 
 def test_single_ray_and_list_input(ctx):
-    result = ctx.advance(Constant(1.0), [0, 0, 0], (0, 2, 0), length=3.0)
+    # Along the gradient the ray stays straight: dr/ds = v / n = (0, 1, 0) throughout.
+    result = ctx.advance(LINEAR, [0, 0, 0], (0, 2, 0), length=3.0)
     assert result.positions.shape == (1, 3) and result.steps.dtype == np.uint64
     assert result.status.dtype == np.int32
-    np.testing.assert_array_equal(result.positions[0], [0.0, 3.0, 0.0])
+    np.testing.assert_allclose(result.positions[0], [0.0, 3.0, 0.0], rtol=0, atol=1e-14)
+
+
+def test_no_rays_is_an_empty_result(ctx):
+    result = ctx.advance(LINEAR, np.empty((0, 3)), np.empty((0, 3)), record_path=True)
+    assert len(result) == 0 and result.positions.shape == (0, 3) and result.paths == []

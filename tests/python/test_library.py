@@ -212,3 +212,26 @@ def test_loader_error_lists_every_place(tree):
     for place in ("ARCUS_LIBRARY", str(tree / "build" / "libarcus.so"), "find_library", sys.prefix):
         assert place in output
     assert "cmake" in output
+
+
+def public_names():
+    for module in (arcus, arcus.media):
+        for name in module.__all__:
+            yield "%s.%s" % (module.__name__, name), getattr(module, name)
+
+
+def test_every_public_name_has_a_docstring():
+    undocumented = []
+    for qualified, obj in public_names():
+        if isinstance(obj, (int, float, str, dict, frozenset)):
+            continue  # constants are documented in the module (#: comments) and the header
+        if not (obj.__doc__ or "").strip():
+            undocumented.append(qualified)
+        if isinstance(obj, type):
+            for member, value in vars(obj).items():
+                if member.startswith("_"):
+                    continue
+                target = value.fget if isinstance(value, property) else getattr(value, "__func__", value)
+                if callable(target) and not (target.__doc__ or "").strip():
+                    undocumented.append("%s.%s" % (qualified, member))
+    assert not undocumented

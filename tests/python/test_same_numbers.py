@@ -80,3 +80,15 @@ def test_kernel_rk4_matches_numpy_rk4_on_evaluated_field(ctx):
     np.testing.assert_allclose(result.positions, r, rtol=0, atol=1e-13)
     np.testing.assert_allclose(result.directions, d, rtol=0, atol=1e-13)
     assert np.abs(result.directions - directions / np.linalg.norm(directions, axis=1, keepdims=True)).max() > 0.1
+
+
+def test_threads_sharing_a_context_get_the_same_numbers(ctx):
+    """Calls on one context from several threads are serialised, never mixed up."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    jobs = [fan(8, spread=0.1 * k) for k in range(6)]
+    serial = [ctx.advance(C_FIELD, o, d, **C_JOB).positions for o, d in jobs]
+    with ThreadPoolExecutor(max_workers=3) as pool:
+        threaded = list(pool.map(lambda job: ctx.advance(C_FIELD, *job, **C_JOB).positions, jobs))
+    for a, b in zip(serial, threaded):
+        np.testing.assert_array_equal(a, b)

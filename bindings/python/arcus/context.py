@@ -97,43 +97,48 @@ def _device_index(device):
 _UINT32_MAX = 2**32 - 1
 _UINT64_MAX = 2**64 - 1
 
+# Context.advance keyword -> its conversion to the arcus_advance_params member of the
+# same name.  Integers are range-checked because ctypes would silently wrap them.
+_PARAM_CONVERSIONS = {
+    "method": lambda v: to_choice(v, "method", C.METHODS),
+    "precision": lambda v: to_choice(v, "precision", C.PRECISIONS),
+    "length": lambda v: to_float(v, "length"),
+    "step": lambda v: to_float(v, "step"),
+    "rtol": lambda v: to_float(v, "rtol"),
+    "atol": lambda v: to_float(v, "atol"),
+    "min_step": lambda v: to_float(v, "min_step"),
+    "max_step": lambda v: to_float(v, "max_step"),
+    "max_rejections": lambda v: to_int(v, "max_rejections", 0, _UINT32_MAX),
+    "max_steps": lambda v: to_int(v, "max_steps", 0, _UINT64_MAX),
+    "path_capacity": lambda v: to_int(v, "path_capacity", 0, _UINT32_MAX),
+    "record_path": lambda v: int(bool(v)),
+}
 
-def _advance_params(method, precision, length, step, rtol, atol, min_step, max_step, max_rejections, max_steps,
-                    box, record_path, path_capacity):
-    """arcus_advance_params: the library's defaults, overridden by every argument given."""
+
+def _advance_params(options):
+    """arcus_advance_params: the library's defaults, overridden by every option not None."""
     params = _lib.AdvanceParamsStruct()
     _lib.check(lib.arcus_advance_params_init(byref(params)))
-    if method is not None:
-        params.method = to_choice(method, "method", C.METHODS)
-    if precision is not None:
-        params.precision = to_choice(precision, "precision", C.PRECISIONS)
-    for name, value in (("length", length), ("step", step), ("rtol", rtol), ("atol", atol),
-                        ("min_step", min_step), ("max_step", max_step)):
-        if value is not None:
-            setattr(params, name, to_float(value, name))
-    if max_rejections is not None:
-        params.max_rejections = to_int(max_rejections, "max_rejections", 0, _UINT32_MAX)
-    if max_steps is not None:
-        params.max_steps = to_int(max_steps, "max_steps", 0, _UINT64_MAX)
-    if path_capacity is not None:
-        params.path_capacity = to_int(path_capacity, "path_capacity", 0, _UINT32_MAX)
-    if record_path is not None:
-        params.record_path = int(bool(record_path))
-    if box is not None:
-        try:
-            low, high = box
-        except (TypeError, ValueError):
-            raise ArgumentError("box must be (min, max), two 3-vectors, got %r" % (box,)) from None
-        params.use_box = 1
-        params.box_min = _lib.vec3(to_vec3(low, "box min"))
-        params.box_max = _lib.vec3(to_vec3(high, "box max"))
+    for name, value in options.items():
+        if value is None:
+            continue
+        if name == "box":
+            try:
+                low, high = value
+            except (TypeError, ValueError):
+                raise ArgumentError("box must be (min, max), two 3-vectors, got %r" % (value,)) from None
+            params.use_box = 1
+            params.box_min = _lib.vec3(to_vec3(low, "box min"))
+            params.box_max = _lib.vec3(to_vec3(high, "box max"))
+        else:
+            setattr(params, name, _PARAM_CONVERSIONS[name](value))
     return params
 
 
 # ---- results --------------------------------------------------------------------------
 
 
-@dataclass
+@dataclass(eq=False)  # element-wise array comparison has no single truth value
 class AdvanceResult:
     """Every ray's result of :meth:`Context.advance` (N rays).
 
@@ -339,8 +344,8 @@ class Context:
         Host-side, double precision, the kernels' formulas (``arcus_field_evaluate``).
         Returns ``(n, gradient)`` with shapes (N,) and (N, 3).
         """
-        handle = self._field(medium)
         points = to_points(positions, "positions")
+        handle = self._field(medium)
         n = np.empty(len(points))
         gradient = np.empty((len(points), 3))
         self._check(lib.arcus_field_evaluate(handle, len(points), _lib.ptr(points), _lib.ptr(n), _lib.ptr(gradient)))
@@ -381,8 +386,10 @@ class Context:
             raise ArgumentError(
                 "origins and directions must hold the same number of rays, got %d and %d" % (len(points), len(heading))
             )
-        params = _advance_params(method, precision, length, step, rtol, atol, min_step, max_step, max_rejections,
-                                 max_steps, box, record_path, path_capacity)
+        params = _advance_params(dict(
+            method=method, precision=precision, length=length, step=step, rtol=rtol, atol=atol, min_step=min_step,
+            max_step=max_step, max_rejections=max_rejections, max_steps=max_steps, box=box, record_path=record_path,
+            path_capacity=path_capacity))
         ctx = self._handle
         field_handle = self._field(field)
         job = c_void_p()

@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds, and runs every test: the ctest suites (C/C++) and
+# the pytest suite (Python).  Exits non-zero when any test fails.  CI runs this.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/bootstrap.sh || exit 1
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null || exit 1
+cmake --build build -j2 || exit 1
+
+# PoCL uses every core for each kernel, so the suites run one test at a time.
+(cd build && ctest --output-on-failure)
+ctest_rc=$?
+python3 -m pytest -q tests/python
+pytest_rc=$?
+echo "ctest exit $ctest_rc, pytest exit $pytest_rc"
+[ $ctest_rc -eq 0 ] && [ $pytest_rc -eq 0 ]

@@ -1,0 +1,221 @@
+// Voxel-grid fields: trilinear values and gradients against a host reference, the
+// clamped exterior (face values extend outwards, zero gradient across the face), files in
+// both scalar types, and rays that start outside the grid.
+#include "test_util.h"
+
+#include <unistd.h>
+
+#include <fstream>
+#include <random>
+
+using namespace arcus_test;
+
+namespace {
+
+class Grid : public ArcusTest {
+ protected:
+  struct Spec {
+    uint32_t dims[3];
+    V3 origin, spacing;
+    std::vector<double> values;
+    double at(uint32_t i, uint32_t j, uint32_t k) const { return values[(size_t(k) * dims[1] + j) * dims[0] + i]; }
+  };
+  // Reference: trilinear interpolation of the clamped point; the gradient is the
+  // interpolant's derivative, zero along an axis on which the point lies outside.
+  static double reference(const Spec& s, const V3& p, V3* grad) {
+    double t[3];
+    uint32_t c[3];
+    bool outside[3];
+    for (int a = 0; a < 3; ++a) {
+      const double f = (p[a] - s.origin[a]) / s.spacing[a];
+      const double hi = double(s.dims[a] - 1);
+      outside[a] = f < 0.0 || f > hi;
+      const double fc = std::min(std::max(f, 0.0), hi);
+      c[a] = std::min(uint32_t(std::floor(fc)), s.dims[a] - 2);
+      t[a] = fc - c[a];
+    }
+    double n = 0.0;
+    V3 g{0, 0, 0};
+    for (int dk = 0; dk < 2; ++dk)
+      for (int dj = 0; dj < 2; ++dj)
+        for (int di = 0; di < 2; ++di) {
+          const double v = s.at(c[0] + di, c[1] + dj, c[2] + dk);
+          const double wx = di ? t[0] : 1 - t[0], wy = dj ? t[1] : 1 - t[1], wz = dk ? t[2] : 1 - t[2];
+          n += v * wx * wy * wz;
+          g[0] += v * (di ? 1 : -1) * wy * wz / s.spacing[0];
+          g[1] += v * wx * (dj ? 1 : -1) * wz / s.spacing[1];
+          g[2] += v * wx * wy * (dk ? 1 : -1) / s.spacing[2];
+        }
+    for (int a = 0; a < 3; ++a)
+      if (outside[a]) g[a] = 0.0;
+    if (grad) *grad = g;
+    return n;
+  }
+  static Spec random_spec(unsigned seed) {
+    Spec s{{4, 5, 3}, {-1.0, 0.5, 2.0}, {0.5, 0.25, 1.0}, {}};
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 0.2);
+    s.values.resize(size_t(s.dims[0]) * s.dims[1] * s.dims[2]);
+    for (double& v : s.values) v = 1.0 + u(rng);
+    return s;
+  }
+  FieldPtr make(const Spec& s) { return grid(s.values, s.dims, s.origin, s.spacing); }
+  static std::string temp_path(const char* tag) {
+    return ::testing::TempDir() + "arcus_grid_" + tag + "_" + std::to_string(getpid()) + ".raw";
+  }
+};
+
+TEST_F(Grid, TrilinearValuesAndGradientsMatchAHostReference) {
+  const Spec s = random_spec(7);
+  auto field = make(s);
+  ASSERT_TRUE(field);
+  arcus_field_kind kind;
+  ASSERT_EQ(arcus_field_get_kind(field.get(), &kind), ARCUS_SUCCESS);
+  EXPECT_EQ(kind, ARCUS_FIELD_GRID);
+  std::mt19937 rng(11);
+  // Points inside and up to one grid size outside on every side.
+  std::uniform_real_distribution<double> ux(-2.5, 1.5), uy(-0.5, 2.5), uz(1.0, 5.0);
+  int inside = 0, outside = 0;
+  for (int i = 0; i < 400; ++i) {
+    const V3 p{ux(rng), uy(rng), uz(rng)};
+    V3 g, want_g;
+    const double n = n_at(field.get(), p, &g);
+    const double want = reference(s, p, &want_g);
+    // Both are a few dozen roundings of numbers ≈ 1 (and their differences / spacing).
+    EXPECT_NEAR(n, want, 1e-14) << "at " << p[0] << " " << p[1] << " " << p[2];
+    EXPECT_LT(distance(g, want_g), 1e-13) << "at " << p[0] << " " << p[1] << " " << p[2];
+    const bool in = p[0] >= -1.0 && p[0] <= 0.5 && p[1] >= 0.5 && p[1] <= 1.5 && p[2] >= 2.0 && p[2] <= 4.0;
+    (in ? inside : outside)++;
+  }
+  EXPECT_GT(inside, 20);
+  EXPECT_GT(outside, 20);
+  // At the grid nodes the values are the data themselves.
+  for (uint32_t k = 0; k < s.dims[2]; ++k)
+    for (uint32_t j = 0; j < s.dims[1]; ++j)
+      for (uint32_t i = 0; i < s.dims[0]; ++i) {
+        const V3 p = s.origin + V3{i * s.spacing[0], j * s.spacing[1], k * s.spacing[2]};
+        EXPECT_NEAR(n_at(field.get(), p), s.at(i, j, k), 1e-15);
+      }
+}
+
+TEST_F(Grid, OutsideValuesAreClampedWithZeroGradientAcross) {
+  // n = 1 + 0.5·x on x ∈ [0, 1] (exact in trilinear form), uniform in y and z.
+  Spec s{{5, 2, 2}, {0, -0.5, -0.5}, {0.25, 1, 1}, {}};
+  for (uint32_t k = 0; k < 2; ++k)
+    for (uint32_t j = 0; j < 2; ++j)
+      for (uint32_t i = 0; i < 5; ++i) s.values.push_back(1.0 + 0.5 * 0.25 * i);
+  auto field = make(s);
+  ASSERT_TRUE(field);
+  struct Case {
+    V3 p;
+    double n;
+    V3 g;
+  };
+  const std::vector<Case> cases{{{0.3, 0.1, 0.2}, 1.15, {0.5, 0, 0}},     // inside
+                                {{-3.0, 0.0, 0.0}, 1.0, {0, 0, 0}},       // before x = 0
+                                {{2.0, 0.0, 0.0}, 1.5, {0, 0, 0}},        // past x = 1
+                                {{0.5, 10.0, -10.0}, 1.25, {0.5, 0, 0}},  // beside: along the face
+                                {{-1.0, 7.0, 9.0}, 1.0, {0, 0, 0}}};      // off a corner
+  for (const Case& c : cases) {
+    V3 g;
+    EXPECT_NEAR(n_at(field.get(), c.p, &g), c.n, 1e-15) << c.p[0] << " " << c.p[1] << " " << c.p[2];
+    EXPECT_LT(distance(g, c.g), 1e-14) << c.p[0] << " " << c.p[1] << " " << c.p[2];
+  }
+}
+
+TEST_F(Grid, FilesInBothScalarTypesEqualTheInMemoryGrid) {
+  const Spec s = random_spec(3);
+  auto mem = make(s);
+  ASSERT_TRUE(mem);
+  const std::string p64 = temp_path("f64"), p32 = temp_path("f32");
+  Spec s32 = s;
+  {
+    std::ofstream out(p64, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(s.values.data()), std::streamsize(s.values.size() * sizeof(double)));
+    std::vector<float> f(s.values.begin(), s.values.end());
+    std::ofstream out32(p32, std::ios::binary);
+    out32.write(reinterpret_cast<const char*>(f.data()), std::streamsize(f.size() * sizeof(float)));
+    for (size_t i = 0; i < f.size(); ++i) s32.values[i] = f[i];
+  }
+  arcus_field_t *f64 = nullptr, *f32 = nullptr;
+  ASSERT_EQ(arcus_field_create_grid_from_file(ctx(), p64.c_str(), ARCUS_FLOAT64, s.dims, s.origin.data(),
+                                              s.spacing.data(), &f64),
+            ARCUS_SUCCESS)
+      << last_error();
+  FieldPtr g64(f64);
+  ASSERT_EQ(arcus_field_create_grid_from_file(ctx(), p32.c_str(), ARCUS_FLOAT32, s.dims, s.origin.data(),
+                                              s.spacing.data(), &f32),
+            ARCUS_SUCCESS)
+      << last_error();
+  FieldPtr g32(f32);
+  auto mem32 = make(s32);
+  ASSERT_TRUE(mem32);
+  std::remove(p64.c_str());
+  std::remove(p32.c_str());
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> ux(-1.5, 1.0), uy(0.0, 2.0), uz(1.5, 4.5);
+  for (int i = 0; i < 50; ++i) {
+    const V3 p{ux(rng), uy(rng), uz(rng)};
+    V3 ga, gb;
+    // Same data, same formulas: identical numbers.
+    EXPECT_EQ(n_at(g64.get(), p, &ga), n_at(mem.get(), p, &gb));
+    EXPECT_EQ(ga, gb);
+    EXPECT_EQ(n_at(g32.get(), p, &ga), n_at(mem32.get(), p, &gb));
+    EXPECT_EQ(ga, gb);
+  }
+}
+
+TEST_F(Grid, RayStartingOutsideTravelsStraightUntilItEnters) {
+  // n = 1 + 0.5·x on x ∈ [0, 1], clamped outside: n = 1 for x < 0 and 1.5 for x > 1,
+  // uniform in y and z everywhere.  A ray from x = −2 runs straight to x = 0, follows a
+  // catenary (gradient along x) to x = 1, then runs straight again.
+  const double g = 0.5, L = 8.0, rtol = 1e-10, atol = 1e-13;
+  Spec s{{5, 2, 2}, {0, -0.5, -0.5}, {0.25, 1, 1}, {}};
+  for (uint32_t k = 0; k < 2; ++k)
+    for (uint32_t j = 0; j < 2; ++j)
+      for (uint32_t i = 0; i < 5; ++i) s.values.push_back(1.0 + g * 0.25 * i);
+  auto field = make(s);
+  ASSERT_TRUE(field);
+  Rays rays;
+  rays.add({-2, 0, 0}, {1, 0, 0});
+  rays.add({-2, 0.3, 0.1}, {1, 0.3, -0.2});
+  rays.add({-2, 5.0, -3.0}, {0.6, -0.8, 0});  // beside the grid in y: same field
+  rays.add({-2, 0, 0}, {-1, 0.5, 0.5});       // moving away: straight all the way
+  const Trace t = trace(ctx(), field.get(), dp45(L, rtol, atol), rays);
+  ASSERT_EQ(t.status, ARCUS_SUCCESS);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const V3 o = rays.origin(i), d = normalize(rays.direction(i));
+    EXPECT_EQ(t.ray_status[i], ARCUS_RAY_DONE);
+    V3 want_pos, want_dir;
+    if (d[0] <= 0) {
+      want_pos = o + L * d;
+      want_dir = d;
+    } else {
+      const double s1 = -o[0] / d[0];  // straight to x = 0
+      const V3 r1 = o + s1 * d;
+      // Inside: v_x = n·d_x grows by g per metre; it leaves at n = 1.5 where
+      // v_x = sqrt(1.5² − A²), A = |v across x| = 1·|d_yz| (conserved).
+      const double A = std::hypot(d[1], d[2]);
+      const double s2 = (std::sqrt(1.5 * 1.5 - A * A) - d[0]) / g;
+      const RayState in = catenary_end(1.0, {g, 0, 0}, r1, d, s2);
+      ASSERT_NEAR(in.pos[0], 1.0, 1e-12);
+      want_pos = in.pos + (L - s1 - s2) * in.dir;
+      want_dir = in.dir;
+      // Before it enters the ray is straight: the field outside is uniform.  Traced to
+      // just before x = 0 it must sit on its line (to rounding).
+      Rays before;
+      before.add(o, d);
+      const Trace b = trace(ctx(), field.get(), dp45(0.99 * s1, rtol, atol), before);
+      ASSERT_EQ(b.status, ARCUS_SUCCESS);
+      EXPECT_LT(distance(b.pos(0), o + (0.99 * s1) * d), 1e-13 * (norm(o) + s1)) << "ray " << i;
+      EXPECT_LT(distance(b.dir(0), d), 1e-15) << "ray " << i;
+    }
+    const double bound = dp45_bound(t.steps[i], rtol, atol, norm(o) + L, 1.5, 1.0, L);
+    EXPECT_LT(distance(t.pos(i), want_pos), bound) << "ray " << i << " steps " << t.steps[i];
+    EXPECT_LT(angle_between(t.dir(i), want_dir), bound) << "ray " << i;
+  }
+  // The bending is real: the second ray ends far from its straight continuation.
+  EXPECT_GT(distance(t.pos(1), rays.origin(1) + L * normalize(rays.direction(1))), 0.1);
+}
+
+}  // namespace
