@@ -30,18 +30,6 @@ ARCUS_INLINE ray6 ray_derivative(const field_desc* f, __global const REAL* data,
   return d;
 }
 
-/* c·k */
-ARCUS_INLINE ray6 ray_scale(ray6 k, REAL c) {
-  ray6 r;
-  r.x = c * k.x;
-  r.y = c * k.y;
-  r.z = c * k.z;
-  r.vx = c * k.vx;
-  r.vy = c * k.vy;
-  r.vz = c * k.vz;
-  return r;
-}
-
 /* h·k, h per lane */
 ARCUS_INLINE ray6 ray_times(ray6 k, REALV h) {
   ray6 r;
@@ -53,6 +41,9 @@ ARCUS_INLINE ray6 ray_times(ray6 k, REALV h) {
   r.vz = h * k.vz;
   return r;
 }
+
+/* c·k */
+ARCUS_INLINE ray6 ray_scale(ray6 k, REAL c) { return ray_times(k, (REALV)c); }
 
 /* acc + c·k */
 ARCUS_INLINE ray6 ray_fma(ray6 k, REAL c, ray6 acc) {

@@ -91,6 +91,29 @@ arcus_status simple(arcus_context_t* ctx, const char* handle_name, Body&& body) 
 arcus_context_t* ctx_of(arcus_field_t* f) { return f ? f->ctx : nullptr; }
 arcus_context_t* ctx_of(arcus_job_t* j) { return j ? j->ctx : nullptr; }
 
+// Retain and release of the objects that belong to a context (fields, jobs): the last
+// release frees the object under its context's lock, then drops the context.
+template <class T>
+arcus_status retain(T* object, const char* name) {
+  if (!object) return null_handle(name);
+  object->refs.fetch_add(1);
+  return ARCUS_SUCCESS;
+}
+
+template <class T>
+arcus_status release(T* object, const char* name) {
+  if (!object) return null_handle(name);
+  if (object->refs.fetch_sub(1) == 1) {
+    arcus_context_t* ctx = object->ctx;
+    {
+      std::lock_guard<std::mutex> lock(ctx->lock);
+      delete object;
+    }
+    arcus::release_context(ctx);
+  }
+  return ARCUS_SUCCESS;
+}
+
 // Creates a field of ctx from a filled description and data.
 arcus_status make_field(arcus_context_t* ctx, arcus_field_t** out,
                         const std::function<void(arcus_field_desc_d*, std::vector<double>*)>& build) {
@@ -325,24 +348,9 @@ arcus_status arcus_field_create_grid_from_file(arcus_context_t* ctx, const char*
   });
 }
 
-arcus_status arcus_field_retain(arcus_field_t* field) {
-  if (!field) return null_handle("field");
-  field->refs.fetch_add(1);
-  return ARCUS_SUCCESS;
-}
+arcus_status arcus_field_retain(arcus_field_t* field) { return retain(field, "field"); }
 
-arcus_status arcus_field_release(arcus_field_t* field) {
-  if (!field) return null_handle("field");
-  if (field->refs.fetch_sub(1) == 1) {
-    arcus_context_t* ctx = field->ctx;
-    {
-      std::lock_guard<std::mutex> lock(ctx->lock);
-      delete field;
-    }
-    arcus::release_context(ctx);
-  }
-  return ARCUS_SUCCESS;
-}
+arcus_status arcus_field_release(arcus_field_t* field) { return release(field, "field"); }
 
 arcus_status arcus_field_get_kind(arcus_field_t* field, arcus_field_kind* kind) {
   return simple(ctx_of(field), "field", [&] {
@@ -394,21 +402,9 @@ arcus_status arcus_advance(arcus_context_t* ctx, arcus_field_t* field, const arc
   });
 }
 
-arcus_status arcus_job_retain(arcus_job_t* job) {
-  if (!job) return null_handle("job");
-  job->refs.fetch_add(1);
-  return ARCUS_SUCCESS;
-}
+arcus_status arcus_job_retain(arcus_job_t* job) { return retain(job, "job"); }
 
-arcus_status arcus_job_release(arcus_job_t* job) {
-  if (!job) return null_handle("job");
-  if (job->refs.fetch_sub(1) == 1) {
-    arcus_context_t* ctx = job->ctx;
-    delete job;
-    arcus::release_context(ctx);
-  }
-  return ARCUS_SUCCESS;
-}
+arcus_status arcus_job_release(arcus_job_t* job) { return release(job, "job"); }
 
 arcus_status arcus_job_get_count(arcus_job_t* job, size_t* count) {
   return simple(ctx_of(job), "job", [&] {
