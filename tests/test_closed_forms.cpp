@@ -131,7 +131,8 @@ TEST_F(ClosedForms, ParabolaInLinearNSquaredField) {
     const double n_end = std::sqrt(a + dot(K, want.pos));
     const double n_min = std::min({n0, n_end, norm(cross(K, n0 * normalize(dirs[i]))) / norm(K)});
     const double n_max = std::sqrt(a + norm(K) * (norm(o) + L));
-    const double bound = dp45_bound(t.steps[i], rtol, atol, norm(o) + L, n_max, std::max(n_min, 0.1), L);
+    ASSERT_GT(n_min, 0.1) << "test design: keep n away from zero";
+    const double bound = dp45_bound(t.steps[i], rtol, atol, norm(o) + L, n_max, n_min, L);
     EXPECT_EQ(t.ray_status[i], ARCUS_RAY_DONE);
     EXPECT_LT(distance(t.pos(i), want.pos), bound) << "ray " << i << " steps " << t.steps[i];
     EXPECT_LT(angle_between(t.dir(i), want.dir), bound) << "ray " << i;
@@ -150,13 +151,9 @@ TEST_F(ClosedForms, LuneburgLensFocusesParallelRaysOnTheFarSide) {
   auto field = luneburg(c, R);
   ASSERT_TRUE(field);
   arcus_advance_params p = dp45(10.0 * R, rtol, atol);
-  // The crossing is located inside an accepted step.  Bounding the step by R/100 bounds
-  // what any interpolation of order ≥ 1 can miss: the chord of an arc of length h with
-  // curvature κ ≤ |∇n|/n ≤ 1/R (its maximum, at the surface) strays h²κ/8 from it, and
-  // meeting the plane at the exit angle asin(b/R) ≤ asin(0.8) stretches that by
-  // 1/cos ≤ 1/0.6 along the plane: 1.25e-5 R / 0.6 ≈ 2.1e-5 R.  Integration errors
-  // (≈ steps·rtol·R) are far below.
-  p.max_step = R / 100.0;
+  // "The end state is where the path crossed the box": the crossing of the computed path,
+  // so the only error is the integration error, dp45_bound over the ≤ 4R of path (n from
+  // 1 to √2).
   p.use_box = 1;
   const V3 lo = c - V3{2 * R, 2 * R, 2 * R}, hi = c + V3{R, 2 * R, 2 * R};
   std::copy(lo.begin(), lo.end(), p.box_min);
@@ -167,14 +164,18 @@ TEST_F(ClosedForms, LuneburgLensFocusesParallelRaysOnTheFarSide) {
   const Trace t = trace(ctx(), field.get(), p, rays);
   ASSERT_EQ(t.status, ARCUS_SUCCESS);
   const V3 F = c + V3{R, 0, 0};
-  const double bound = 2.1e-5 * R + dp45_bound(t.max_steps(), rtol, atol, norm(c) + 2 * R, std::sqrt(2.0), 1.0, 4 * R);
+  const double bound = dp45_bound(t.max_steps(), rtol, atol, norm(c) + 2 * R, std::sqrt(2.0), 1.0, 4 * R);
+  // Direction: the v errors alone give ≤ bound/L; a position error δr changes ∇n by
+  // ≤ δr/R² (|∂²n| ≤ 1/R² inside), which over ≤ 4R of path turns v by ≤ 4δr/R more.
+  const double dir_bound = 5.0 * bound / R;
   for (size_t i = 0; i < impacts.size(); ++i) {
     const V3 b{0.0, impacts[i].first, impacts[i].second};  // impact offset in units of R
     EXPECT_EQ(t.ray_status[i], ARCUS_RAY_LEFT_BOX) << "ray " << i;
     EXPECT_LT(distance(t.pos(i), F), bound) << "ray " << i << " misses the focus, b = " << norm(b);
+    std::printf("impact %.2f R: %llu steps, distance to the focus %.3e R (bound %.3e R)\n", norm(b),
+                (unsigned long long)t.steps[i], distance(t.pos(i), F) / R, bound / R);
     const V3 want_dir{std::sqrt(1.0 - dot(b, b)), -b[1], -b[2]};
-    // Direction: same chord argument on the tangent, h·κ/2 ≤ 0.005 rad at most.
-    EXPECT_LT(angle_between(t.dir(i), want_dir), 0.005) << "ray " << i;
+    EXPECT_LT(angle_between(t.dir(i), want_dir), dir_bound) << "ray " << i;
   }
   // The axial ray is straight (∇n along it): it travels exactly 2.5 R to F.
   EXPECT_NEAR(t.lengths[0], 2.5 * R, bound);
@@ -192,7 +193,7 @@ TEST_F(ClosedForms, MaxwellFishEyeRaysAreCircles) {
     V3 P, d;
     double L;
   };
-  const std::vector<Case> cases{{c + V3{0.5 * R, 0, 0}, {0, 1, 0}, 10.0},  // circle radius 1.25 R: > 1 turn
+  const std::vector<Case> cases{{c + V3{0.5 * R, 0, 0}, {0, 1, 0}, 20.0},  // circle of radius 2.5: 1.27 turns
                                 {c + 2.0 * V3{0.6, 0.8, -0.4}, {0.2, -0.5, 0.9}, 7.0},
                                 {c + V3{-1.0, 0.5, 2.0}, {1, 1, 0}, 12.0},
                                 {c + V3{0.1, 0.1, 0.0}, {0, 0, 1}, 5.0}};
@@ -215,8 +216,8 @@ TEST_F(ClosedForms, MaxwellFishEyeRaysAreCircles) {
     EXPECT_EQ(t.ray_status[0], ARCUS_RAY_DONE);
     EXPECT_LT(distance(t.pos(0), want.pos), bound) << "P = " << k.P[0] << "," << k.P[1] << "," << k.P[2];
     EXPECT_LT(angle_between(t.dir(0), want.dir), bound / std::min(1.0, std::fabs(rho)));
-    // The arc really curved (more than a radian of turn in every case).
-    EXPECT_GT(angle_between(t.dir(0), normalize(k.d)), 0.5);
+    // Test design: every case turns by more than 0.3 rad (a straight tracer must fail).
+    ASSERT_GT(angle_between(want.dir, normalize(k.d)), 0.3);
   }
 }
 
@@ -231,7 +232,8 @@ TEST_F(ClosedForms, ConstantFieldIsAStraightLineWithStraightFeatureOnly) {
   for (arcus_method m : {ARCUS_METHOD_DP45, ARCUS_METHOD_RK4, ARCUS_METHOD_EULER}) {
     arcus_advance_params p = m == ARCUS_METHOD_DP45 ? dp45(L, 1e-9, 1e-12) : fixed(m, 0.5, L);
     const Trace t = trace(ctx(), field.get(), p, rays);
-    ASSERT_EQ(t.status, ARCUS_SUCCESS);
+    EXPECT_EQ(t.status, ARCUS_SUCCESS) << "method " << m << ": " << last_error();
+    if (t.status != ARCUS_SUCCESS) continue;
     // No integrator is compiled for a constant field, whatever the method asked for.
     EXPECT_EQ(t.features, ARCUS_FEATURE_STRAIGHT) << "method " << m;
     for (size_t i = 0; i < rays.size(); ++i) {
@@ -250,26 +252,30 @@ TEST_F(ClosedForms, ConstantFieldIsAStraightLineWithStraightFeatureOnly) {
 TEST_F(ClosedForms, ConstantFieldBoxExitIsTheExactIntersection) {
   auto field = constant(1.0);
   ASSERT_TRUE(field);
-  arcus_advance_params p = dp45(100.0, 1e-9, 1e-12);
-  p.use_box = 1;
-  const double lo[3] = {-1, -2, -3}, hi[3] = {4, 5, 6};
-  std::copy(lo, lo + 3, p.box_min);
-  std::copy(hi, hi + 3, p.box_max);
   Rays rays;
   rays.add({0, 0, 0}, {1, 0, 0});        // leaves through x = 4 after 4
   rays.add({0, 0, 0}, {0, -1, 1});       // through y = -2 after 2√2
   rays.add({1, 1, 1}, {0.3, 0.4, 1.2});  // through z = 6 after 5/1.2·|d|
-  const Trace t = trace(ctx(), field.get(), p, rays);
-  ASSERT_EQ(t.status, ARCUS_SUCCESS);
-  EXPECT_EQ(t.features, ARCUS_FEATURE_STRAIGHT | ARCUS_FEATURE_BOX);
   const std::vector<double> want_len{4.0, 2.0 * std::sqrt(2.0), 5.0 / 1.2 * norm({0.3, 0.4, 1.2})};
+  // A ray-plane intersection: a few roundings of numbers ≤ 10.
   const double eps = 16 * std::numeric_limits<double>::epsilon() * 10.0;
-  for (size_t i = 0; i < rays.size(); ++i) {
-    const V3 o = rays.origin(i);
-    const V3 d = normalize(rays.direction(i));
-    EXPECT_EQ(t.ray_status[i], ARCUS_RAY_LEFT_BOX) << "ray " << i;
-    EXPECT_NEAR(t.lengths[i], want_len[i], eps) << "ray " << i;
-    EXPECT_LT(distance(t.pos(i), o + want_len[i] * d), eps) << "ray " << i;
+  for (arcus_method m : {ARCUS_METHOD_DP45, ARCUS_METHOD_RK4}) {
+    arcus_advance_params p = m == ARCUS_METHOD_DP45 ? dp45(100.0, 1e-9, 1e-12) : fixed(m, 0.5, 100.0);
+    p.use_box = 1;
+    const double lo[3] = {-1, -2, -3}, hi[3] = {4, 5, 6};
+    std::copy(lo, lo + 3, p.box_min);
+    std::copy(hi, hi + 3, p.box_max);
+    const Trace t = trace(ctx(), field.get(), p, rays);
+    EXPECT_EQ(t.status, ARCUS_SUCCESS) << "method " << m << ": " << last_error();
+    if (t.status != ARCUS_SUCCESS) continue;
+    EXPECT_EQ(t.features, ARCUS_FEATURE_STRAIGHT | ARCUS_FEATURE_BOX);
+    for (size_t i = 0; i < rays.size(); ++i) {
+      const V3 o = rays.origin(i);
+      const V3 d = normalize(rays.direction(i));
+      EXPECT_EQ(t.ray_status[i], ARCUS_RAY_LEFT_BOX) << "ray " << i;
+      EXPECT_NEAR(t.lengths[i], want_len[i], eps) << "ray " << i;
+      EXPECT_LT(distance(t.pos(i), o + want_len[i] * d), eps) << "ray " << i;
+    }
   }
 }
 

@@ -134,8 +134,8 @@ TEST_F(BadInput, BadFieldParametersAreRejected) {
   arcus_atmosphere_desc_init(&d);
   d.wavelength = 200.0;
   expect_invalid(arcus_field_create_atmosphere(ctx(), &d, &f), "wavelength", "wavelength below 300 nm");
-  d.wavelength = 2500.0;
-  expect_invalid(arcus_field_create_atmosphere(ctx(), &d, &f), "wavelength", "wavelength above 2000 nm");
+  d.wavelength = 1800.0;
+  expect_invalid(arcus_field_create_atmosphere(ctx(), &d, &f), "wavelength", "wavelength above 1690 nm");
   arcus_atmosphere_desc_init(&d);
   d.sea_level_temperature = -5.0;
   expect_invalid(arcus_field_create_atmosphere(ctx(), &d, &f), "temperature", "negative temperature");
@@ -240,6 +240,24 @@ TEST_F(BadInput, EveryContextFunctionRejectsNullArguments) {
             ARCUS_ERROR_INVALID_ARGUMENT);
   expect_invalid(arcus_field_create_grid_from_file(ctx(), nullptr, ARCUS_FLOAT64, dims, c, one, &f), "path",
                  "grid file path");
+  {
+    // A readable file of the right size, so that only the null argument is wrong.
+    const std::string path = temp_path("null_args");
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(values.data()),
+                                                std::streamsize(values.size() * sizeof(double)));
+    const char* p = path.c_str();
+    expect_invalid(arcus_field_create_grid_from_file(ctx(), p, ARCUS_FLOAT64, nullptr, c, one, &f), "dims",
+                   "grid file dims");
+    expect_invalid(arcus_field_create_grid_from_file(ctx(), p, ARCUS_FLOAT64, dims, nullptr, one, &f), "origin",
+                   "grid file origin");
+    expect_invalid(arcus_field_create_grid_from_file(ctx(), p, ARCUS_FLOAT64, dims, c, nullptr, &f), "spacing",
+                   "grid file spacing");
+    expect_invalid(arcus_field_create_grid_from_file(ctx(), p, ARCUS_FLOAT64, dims, c, one, nullptr), "out",
+                   "grid file out");
+    expect_invalid(arcus_field_create_grid_from_file(ctx(), p, static_cast<arcus_scalar_type>(7), dims, c, one, &f),
+                   "type", "grid file scalar type");
+    std::remove(path.c_str());
+  }
   EXPECT_EQ(f, nullptr);
   (void)info;
 
@@ -283,11 +301,19 @@ TEST_F(BadInput, BadGridsAreRejected) {
   expect_invalid(arcus_field_create_grid(ctx(), values.data(), dims, origin, spacing, &f), "values", "NaN value");
   values[7] = kInf;
   expect_invalid(arcus_field_create_grid(ctx(), values.data(), dims, origin, spacing, &f), "values", "Inf value");
+  // n must be positive.
+  values[7] = 0.0;
+  expect_invalid(arcus_field_create_grid(ctx(), values.data(), dims, origin, spacing, &f), "values", "zero value");
+  values[7] = -1.0;
+  expect_invalid(arcus_field_create_grid(ctx(), values.data(), dims, origin, spacing, &f), "values", "negative value");
   values[7] = 1.0;
   for (int axis = 0; axis < 3; ++axis) {
+    // Each of dims must be 2..65536 (trilinear needs two nodes per axis).
     uint32_t zero[3] = {2, 3, 4};
     zero[axis] = 0;
     expect_invalid(arcus_field_create_grid(ctx(), values.data(), zero, origin, spacing, &f), "dims", "zero dimension");
+    zero[axis] = 1;
+    expect_invalid(arcus_field_create_grid(ctx(), values.data(), zero, origin, spacing, &f), "dims", "dimension 1");
     double bad_spacing[3] = {1, 1, 1};
     bad_spacing[axis] = 0.0;
     expect_invalid(arcus_field_create_grid(ctx(), values.data(), dims, origin, bad_spacing, &f), "spacing",

@@ -45,8 +45,9 @@ inline V3 rotate(const V3& v, const V3& axis, double t) {
   const V3 k = normalize(axis);
   return std::cos(t) * v + std::sin(t) * cross(k, v) + (1.0 - std::cos(t)) * dot(k, v) * k;
 }
-inline double deg(double radians) { return radians * 180.0 / M_PI; }
-inline double rad(double degrees) { return degrees * M_PI / 180.0; }
+constexpr double kPi = 3.14159265358979323846;
+inline double deg(double radians) { return radians * 180.0 / kPi; }
+inline double rad(double degrees) { return degrees * kPi / 180.0; }
 
 inline std::string lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -92,37 +93,38 @@ class ArcusTest : public ::testing::Test {
   static std::string last_error() { return ctx_ ? arcus_context_last_error(ctx_) : arcus_last_error(); }
 
   // Field factories: a failure is reported (with the library's message) and gives null.
-  static FieldPtr check(arcus_status st, arcus_field_t* f, const char* what) {
+  // (f is read through a pointer: argument evaluation order is unspecified.)
+  static FieldPtr check(arcus_status st, arcus_field_t* const* f, const char* what) {
     EXPECT_EQ(st, ARCUS_SUCCESS) << what << ": " << arcus_status_string(st) << ": " << last_error();
-    return FieldPtr(st == ARCUS_SUCCESS ? f : nullptr);
+    return FieldPtr(st == ARCUS_SUCCESS ? *f : nullptr);
   }
   static FieldPtr constant(double n) {
     arcus_field_t* f = nullptr;
-    return check(arcus_field_create_constant(ctx_, n, &f), f, "constant field");
+    return check(arcus_field_create_constant(ctx_, n, &f), &f, "constant field");
   }
   static FieldPtr linear(double n0, const V3& g) {
     arcus_field_t* f = nullptr;
-    return check(arcus_field_create_linear(ctx_, n0, g.data(), &f), f, "linear field");
+    return check(arcus_field_create_linear(ctx_, n0, g.data(), &f), &f, "linear field");
   }
   static FieldPtr linear_n2(double a, const V3& k) {
     arcus_field_t* f = nullptr;
-    return check(arcus_field_create_linear_n2(ctx_, a, k.data(), &f), f, "linear n^2 field");
+    return check(arcus_field_create_linear_n2(ctx_, a, k.data(), &f), &f, "linear n^2 field");
   }
   static FieldPtr luneburg(const V3& c, double radius) {
     arcus_field_t* f = nullptr;
-    return check(arcus_field_create_luneburg(ctx_, c.data(), radius, &f), f, "Luneburg field");
+    return check(arcus_field_create_luneburg(ctx_, c.data(), radius, &f), &f, "Luneburg field");
   }
   static FieldPtr fisheye(const V3& c, double radius, double n0) {
     arcus_field_t* f = nullptr;
-    return check(arcus_field_create_fisheye(ctx_, c.data(), radius, n0, &f), f, "fish-eye field");
+    return check(arcus_field_create_fisheye(ctx_, c.data(), radius, n0, &f), &f, "fish-eye field");
   }
   static FieldPtr atmosphere(const arcus_atmosphere_desc& d) {
     arcus_field_t* f = nullptr;
-    return check(arcus_field_create_atmosphere(ctx_, &d, &f), f, "atmosphere field");
+    return check(arcus_field_create_atmosphere(ctx_, &d, &f), &f, "atmosphere field");
   }
   static FieldPtr grid(const std::vector<double>& values, const uint32_t dims[3], const V3& origin, const V3& spacing) {
     arcus_field_t* f = nullptr;
-    return check(arcus_field_create_grid(ctx_, values.data(), dims, origin.data(), spacing.data(), &f), f,
+    return check(arcus_field_create_grid(ctx_, values.data(), dims, origin.data(), spacing.data(), &f), &f,
                  "grid field");
   }
   // n and ∇n of a field at one point (host evaluation, the kernels' formulas).

@@ -152,7 +152,7 @@ typedef struct arcus_inversion {
 
 typedef struct arcus_atmosphere_desc {
   int32_t spherical;                  /* 0: flat, height = y; 1: Earth-centred sphere  */
-  double wavelength;                  /* nm, 300..2000 (Ciddor's dispersion range)     */
+  double wavelength;                  /* nm, 300..1690 (Ciddor's dispersion range)     */
   double sea_level_temperature;       /* K   (US Standard Atmosphere 1976: 288.15)     */
   double sea_level_pressure;          /* Pa  (101325)                                  */
   uint32_t inversion_count;
@@ -164,8 +164,9 @@ ARCUS_API arcus_status arcus_atmosphere_desc_init(arcus_atmosphere_desc* desc);
 ARCUS_API arcus_status arcus_field_create_atmosphere(arcus_context_t* ctx, const arcus_atmosphere_desc* desc,
                                                      arcus_field_t** out);
 
-/* values[(k*ny + j)*nx + i] is n at origin + (i, j, k)·spacing.  Outside the grid the
- * values at its faces extend outwards (clamped), with zero gradient across the face. */
+/* values[(k*ny + j)*nx + i] is n at origin + (i, j, k)·spacing; each of dims is 2..65536
+ * and every value a positive finite n.  Outside the grid the values at its faces extend
+ * outwards (clamped), with zero gradient across the face. */
 ARCUS_API arcus_status arcus_field_create_grid(arcus_context_t* ctx, const double* values, const uint32_t dims[3],
                                                const double origin[3], const double spacing[3], arcus_field_t** out);
 
@@ -204,7 +205,9 @@ typedef struct arcus_advance_params {
   double step;            /* fixed step (Euler/RK2/RK4); initial step for DP45 (0: auto) */
   double rtol, atol;      /* DP45 tolerances on position and v, per step (> 0)         */
   double min_step;        /* DP45: a step this small that still fails ends the ray     */
-  double max_step;        /* DP45: upper bound on the step (0: unbounded)              */
+  double max_step;        /* DP45: upper bound on the step (0: unbounded).  For a Luneburg
+                           * lens or a grid arcus also caps it at half the radius / the
+                           * grid's smallest extent, so no step jumps over the medium. */
   uint32_t max_rejections;/* DP45: consecutive rejections before the ray fails         */
   uint64_t max_steps;     /* accepted steps before the ray stops (ARCUS_RAY_STEP_LIMIT) */
   int32_t use_box;        /* stop on leaving [box_min, box_max]                        */
@@ -260,7 +263,8 @@ ARCUS_API arcus_status arcus_job_get_count(arcus_job_t* job, size_t* count);
  * steps: accepted steps; status: arcus_ray_status; lengths: arc length travelled.    */
 ARCUS_API arcus_status arcus_job_get_end_states(arcus_job_t* job, double* positions, double* directions,
                                                 uint64_t* steps, int32_t* status, double* lengths);
-/* Paths (record_path): total_points is the number of points kept for all rays. */
+/* Paths (record_path): total_points is the number of points kept for all rays.  Both
+ * path calls return ARCUS_ERROR_INVALID_ARGUMENT for a job advanced without record_path. */
 ARCUS_API arcus_status arcus_job_get_path_size(arcus_job_t* job, size_t* total_points);
 /* offsets: count+1 entries; ray i's points are points[offsets[i] .. offsets[i+1]) (×3).
  * needed: count entries, the points each ray's full path has (> kept on overflow);

@@ -123,13 +123,18 @@ Desc make_advance_desc(const arcus_advance_params& p, bool fixed, uint32_t capac
     // The least n with n·step >= length, in the kernel's arithmetic; the last step
     // ends exactly at `length`.  Capped by max_steps (the kernel then reports it).
     const Real L = d.length, h = d.step;
-    double n = std::ceil(static_cast<double>(L / h));
-    require(n <= static_cast<double>(int_max), "params.length / params.step needs more than 2^31 steps");
-    int64_t steps = std::max<int64_t>(1, static_cast<int64_t>(n));
-    while (steps > 1 && static_cast<Real>(steps - 1) * h >= L) --steps;
-    while (static_cast<Real>(steps) * h < L) ++steps;
-    if (static_cast<uint64_t>(steps) > p.max_steps) {
-      steps = static_cast<int64_t>(p.max_steps);
+    // n from the division, corrected to the least n in Real arithmetic; when max_steps
+    // stops the ray first, that n is never needed (and may not fit in an int).
+    const uint64_t max_steps = std::min<uint64_t>(p.max_steps, int_max);
+    double n = std::max(1.0, std::ceil(static_cast<double>(L / h)));
+    const bool capped = n > static_cast<double>(max_steps) + 1.0;
+    int64_t steps = capped ? static_cast<int64_t>(max_steps) + 1 : static_cast<int64_t>(n);
+    if (!capped) {
+      while (steps > 1 && static_cast<Real>(steps - 1) * h >= L) --steps;
+      while (static_cast<Real>(steps) * h < L) ++steps;
+    }
+    if (static_cast<uint64_t>(steps) > max_steps) {
+      steps = static_cast<int64_t>(max_steps);
       d.last_step = h;
     } else {
       d.last_step = L - static_cast<Real>(steps - 1) * h;
@@ -137,6 +142,22 @@ Desc make_advance_desc(const arcus_advance_params& p, bool fixed, uint32_t capac
     d.fixed_steps = static_cast<int32_t>(steps);
   }
   return d;
+}
+
+// Outside a Luneburg lens or a grid the field is constant, so the adaptive step grows
+// without bound there and one step could jump over the whole medium unsampled.  Half
+// the lens radius, or half the grid's smallest extent, keeps at least two stages of
+// every crossing path inside, where the error estimate sees the medium.
+double bounded_max_step(const arcus_advance_params& p, const arcus_field_desc_d& f) {
+  double cap = 0;
+  if (f.kind == ARCUS_KIND_LUNEBURG) cap = 0.5 / std::sqrt(f.inv_radius2);
+  if (f.kind == ARCUS_KIND_GRID)
+    for (int a = 0; a < 3; ++a) {
+      double extent = (f.dims[a] - 1) / f.inv_spacing[a];
+      cap = a == 0 ? 0.5 * extent : std::min(cap, 0.5 * extent);
+    }
+  if (cap == 0) return p.max_step;
+  return p.max_step > 0 ? std::min(p.max_step, cap) : cap;
 }
 
 struct Launch {
@@ -226,7 +247,7 @@ void run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
   const size_t per_item = static_cast<size_t>(launch.lanes) * launch.groups;
   const size_t items = std::max<size_t>(1, (count + per_item - 1) / per_item);
   const size_t stride = items * per_item;
-  const bool fixed = (launch.features & ARCUS_FEATURE_DP45) == 0;
+  const bool fixed = (launch.features & (ARCUS_FEATURE_DP45 | ARCUS_FEATURE_STRAIGHT)) == 0;
 
   // Structure-of-arrays input; padding rays have a zero direction, so the kernel
   // marks them invalid and they never take a step.
@@ -248,6 +269,7 @@ void run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
   cl_mem data = field_buffer(field, clctx, sizeof(Real) == sizeof(float));
   FieldDesc fdesc = field_desc_as<FieldDesc>(field->desc);
   AdvanceDesc adesc = make_advance_desc<AdvanceDesc, Real>(p, fixed, capacity, stride);
+  adesc.max_step = static_cast<Real>(bounded_max_step(p, field->desc));
   if (launch.features & ARCUS_FEATURE_STRAIGHT) {
     adesc.fixed_steps = 1;
     adesc.step = adesc.last_step = adesc.length;

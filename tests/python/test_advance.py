@@ -141,6 +141,12 @@ def test_max_steps_stops_rays(ctx):
     assert set(adaptive.status_names) == {"STEP_LIMIT"}
 
 
+def test_max_steps_caps_a_job_of_very_many_fixed_steps(ctx):
+    """length / step is 1e12 steps, but max_steps stops every ray after 5 (arcus.h)."""
+    result = ctx.advance(LINEAR, [0, 0, 0], [1, 0, 0], method="euler", step=1e-12, length=1.0, max_steps=5)
+    assert result.status[0] == arcus.RAY_STEP_LIMIT and result.steps[0] == 5
+
+
 def test_dp45_gives_up_when_the_tolerance_cannot_be_met(ctx):
     origins, directions = fan(8)
     # Two rejections in a row (max_rejections=1) of steps far too long for the tolerance.

@@ -156,23 +156,22 @@ def _source_root():
 
 
 def _candidates():
-    """(description, path-or-name or None) pairs in the order they are tried.
+    """Yields (description, path-or-name or None) in the order they are tried.
 
     In the source tree, ``build/`` (the default build directory) comes first, then
     any other ``build*/`` in name order.  A None path records a place looked at that
-    offered nothing, for the error message.
+    offered nothing, for the error message.  A generator, so that the slow
+    find_library (it runs ldconfig) only runs when the source tree has no library.
     """
-    found = []
     root = _source_root()
     if root is None:
-        found.append(("source tree", None))
+        yield "source tree", None
     else:
         others = sorted(p for p in root.glob("build*") if p.is_dir() and p.name != "build")
         for build in [root / "build"] + others:
-            found.append(("source tree build", str(build / _LIBRARY_NAME)))
-    found.append(("installed (ctypes.util.find_library('arcus'))", ctypes.util.find_library("arcus")))
-    found.append(("installed (sys.prefix)", str(Path(sys.prefix) / "lib" / _LIBRARY_NAME)))
-    return found
+            yield "source tree build", str(build / _LIBRARY_NAME)
+    yield "installed (ctypes.util.find_library('arcus'))", ctypes.util.find_library("arcus")
+    yield "installed (sys.prefix)", str(Path(sys.prefix) / "lib" / _LIBRARY_NAME)
 
 
 def _open(path):

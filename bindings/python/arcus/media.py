@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import _lib
-from ._args import to_float, to_vec3
+from ._args import to_float, to_int, to_vec3
 from ._errors import ArgumentError
 from ._lib import lib
 
@@ -159,7 +159,8 @@ class StandardAtmosphere(Field):
     Args:
         spherical: False: flat, height is y (y = 0 at sea level).  True: a sphere of
             radius :data:`arcus.EARTH_RADIUS` centred on the origin.
-        wavelength: nm, 300..2000 (the range of Ciddor's dispersion formula).
+        wavelength: nm, within the range of Ciddor's dispersion formula (from 300 nm
+            into the near infrared).
         inversions: a sequence of :class:`Inversion` or ``(base, top, delta_t)`` tuples.
         sea_level_temperature: K.
         sea_level_pressure: Pa.
@@ -219,13 +220,14 @@ def _dims(shape):
 
 
 def _grid_shape(shape):
+    """(nz, ny, nx) as three ints that fit the C API's uint32 dims."""
     try:
-        shape = tuple(int(s) for s in shape)
-    except (TypeError, ValueError):
-        raise ArgumentError("shape must be three integers (nz, ny, nx), got %r" % (shape,)) from None
-    if len(shape) != 3 or min(shape) < 1:
-        raise ArgumentError("shape must be three positive integers (nz, ny, nx), got %r" % (shape,))
-    return shape
+        items = tuple(shape)
+    except TypeError:
+        items = ()
+    if len(items) != 3:
+        raise ArgumentError("shape must be three integers (nz, ny, nx), got %r" % (shape,))
+    return tuple(to_int(s, "shape[%d]" % axis, 1, 2**32 - 1) for axis, s in enumerate(items))
 
 
 @dataclass(frozen=True, eq=False)
