@@ -15,7 +15,7 @@ struct PeakResult {
 
 // Runs the microkernel on the OpenCL device whose platform and device names match
 // arcus' device, once per (vector width, chains) variant; each variant is sized to run
-// about target_seconds and reports its best of three.
+// about target_seconds and reports its best of five.
 std::vector<PeakResult> measure_fp64_peak(const std::string& platform_name, const std::string& device_name,
                                           double target_seconds);
 

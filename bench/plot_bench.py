@@ -68,7 +68,7 @@ def style_axes(ax, title, xlabel, ylabel, invert_x=False):
     ax.legend(fontsize=7)
 
 
-def panels(out):
+def panels():
     """The eight Fig. 5.13 panels: (letter, title, csv, x column, x label, y column, methods, peer, invert)."""
     t, e = "time_per_ray_s", "err_max_m"
     fixed, dp, every = METHODS[:3], ["dp45"], METHODS
@@ -95,7 +95,7 @@ def draw_panel(ax, out, spec):
 
 
 def plot_fig5_13(out):
-    specs = panels(out)
+    specs = panels()
     fig, axes = plt.subplots(4, 2, figsize=(11, 16))
     for ax, spec in zip(axes.flat, specs):
         draw_panel(ax, out, spec)
