@@ -81,6 +81,21 @@ ARCUS_INLINE ray6 ray_select(ray6 a, ray6 b, MASKV m) {
   return r;
 }
 
+/* y + h·t, the update of the state at the end of a step.  In float, positions of
+ * hundreds of metres lose the low bits of every small step (RK4, 10⁵ steps of 0.01 m:
+ * 0.54 m off), so the float path carries what was lost in *comp (Kahan summation); in
+ * double *comp is not touched and compiles away. */
+ARCUS_INLINE ray6 ray_advance(ray6 y, REALV h, ray6 t, ray6* comp) {
+#ifdef ARCUS_FEATURE_FLOAT
+  ray6 d = ray_fma(*comp, RC(-1), ray_times(t, h));
+  ray6 sum = ray_fma(d, RC(1), y);
+  *comp = ray_fma(d, RC(-1), ray_fma(y, RC(-1), sum)); /* (sum − y) − d */
+  return sum;
+#else
+  return ray_step(y, h, t);
+#endif
+}
+
 ARCUS_INLINE MASKV ray_finite(ray6 y) { return isfinite(y.x + y.y + y.z + y.vx + y.vy + y.vz); }
 
 /* The groups advance in lockstep, one stage at a time for all of them, so each stage
@@ -89,23 +104,26 @@ ARCUS_INLINE MASKV ray_finite(ray6 y) { return isfinite(y.x + y.y + y.z + y.vx +
 #define FOR_GROUPS(g) _Pragma("unroll") for (int g = 0; g < ARCUS_GROUPS; ++g)
 
 /* ---------------------------------------------------------------- fixed steps */
-/* y_new[g] = one step of length h from y[g], for every group. */
+/* y_new[g] = one step of length h from y[g], for every group; comp: see ray_advance. */
 #if defined(ARCUS_METHOD_STRAIGHT) || defined(ARCUS_METHOD_EULER)
 /* Straight: a constant field has ∇n = 0, so one step r + L·v/n is exact. */
-ARCUS_INLINE void fixed_step(const field_desc* f, __global const REAL* data, const ray6* y, ray6* y_new, REALV h) {
-  FOR_GROUPS(g) y_new[g] = ray_step(y[g], h, ray_derivative(f, data, y[g]));
+ARCUS_INLINE void fixed_step(const field_desc* f, __global const REAL* data, const ray6* y, ray6* y_new, ray6* comp,
+                             REALV h) {
+  FOR_GROUPS(g) y_new[g] = ray_advance(y[g], h, ray_derivative(f, data, y[g]), &comp[g]);
 }
 #elif defined(ARCUS_METHOD_RK2)
 /* Explicit midpoint. */
-ARCUS_INLINE void fixed_step(const field_desc* f, __global const REAL* data, const ray6* y, ray6* y_new, REALV h) {
+ARCUS_INLINE void fixed_step(const field_desc* f, __global const REAL* data, const ray6* y, ray6* y_new, ray6* comp,
+                             REALV h) {
   ray6 k[ARCUS_GROUPS];
   FOR_GROUPS(g) k[g] = ray_derivative(f, data, y[g]);
   FOR_GROUPS(g) k[g] = ray_derivative(f, data, ray_step(y[g], RC(0.5) * h, k[g]));
-  FOR_GROUPS(g) y_new[g] = ray_step(y[g], h, k[g]);
+  FOR_GROUPS(g) y_new[g] = ray_advance(y[g], h, k[g], &comp[g]);
 }
 #elif defined(ARCUS_METHOD_RK4)
 /* Classical fourth order: k = k1..k4 in turn, acc = k1 + 2 k2 + 2 k3 + k4. */
-ARCUS_INLINE void fixed_step(const field_desc* f, __global const REAL* data, const ray6* y, ray6* y_new, REALV h) {
+ARCUS_INLINE void fixed_step(const field_desc* f, __global const REAL* data, const ray6* y, ray6* y_new, ray6* comp,
+                             REALV h) {
   const REALV half_h = RC(0.5) * h;
   ray6 k[ARCUS_GROUPS], acc[ARCUS_GROUPS];
   FOR_GROUPS(g) {
@@ -122,7 +140,7 @@ ARCUS_INLINE void fixed_step(const field_desc* f, __global const REAL* data, con
   }
   FOR_GROUPS(g) {
     k[g] = ray_derivative(f, data, ray_step(y[g], h, k[g]));
-    y_new[g] = ray_step(y[g], h * RC(1.0 / 6.0), ray_fma(k[g], RC(1), acc[g]));
+    y_new[g] = ray_advance(y[g], h * RC(1.0 / 6.0), ray_fma(k[g], RC(1), acc[g]), &comp[g]);
   }
 }
 #endif
@@ -238,13 +256,15 @@ ARCUS_INLINE REALV dp_step_factor(REALV err) {
 
 /* Accepts or rejects one group's trial step from y to y5 (error estimate err) and
  * adapts its step size. */
-ARCUS_INLINE MASKV dp_decide(const advance_desc* job, ray6* y, ray6* k1, REALV* s, REALV* h, IDXV* steps,
-                       IDXV* rejections, IDXV* status, REALV h_try, MASKV last, ray6 y5, ray6 k7, ray6 err) {
+ARCUS_INLINE MASKV dp_decide(const advance_desc* job, ray6* y, ray6* comp, ray6* k1, REALV* s, REALV* h, IDXV* steps,
+                             IDXV* rejections, IDXV* status, REALV h_try, MASKV last, ray6 y5, ray6 comp5, ray6 k7,
+                             ray6 err) {
   MASKV active = *status == (IDXV)ARCUS_STATUS_ACTIVE;
   REALV norm = dp_error_norm(job, *y, y5, err);
   MASKV accept = active & (norm <= RC(1));
   MASKV reject = active & !(norm <= RC(1));
   *y = ray_select(*y, y5, accept);
+  *comp = ray_select(*comp, comp5, accept);
   *k1 = ray_select(*k1, k7, accept);
   *s = SEL(*s, SEL(*s + h_try, (REALV)job->length, last), accept);
   *steps += ONE_IF(accept);
@@ -262,10 +282,11 @@ ARCUS_INLINE MASKV dp_decide(const advance_desc* job, ray6* y, ray6* k1, REALV* 
 }
 
 /* One trial step of every active lane of every group (stages in lockstep). */
-ARCUS_INLINE void dp_attempt(const field_desc* f, __global const REAL* data, const advance_desc* job, ray6* y, ray6* k1,
+ARCUS_INLINE void dp_attempt(const field_desc* f, __global const REAL* data, const advance_desc* job, ray6* y, ray6* comp,
+                             ray6* k1,
                        REALV* s, REALV* h, IDXV* steps, IDXV* rejections, IDXV* status, MASKV* accepted) {
   ray6 k2[ARCUS_GROUPS], k3[ARCUS_GROUPS], k4[ARCUS_GROUPS], k5[ARCUS_GROUPS], k6[ARCUS_GROUPS];
-  ray6 k7[ARCUS_GROUPS], y5[ARCUS_GROUPS];
+  ray6 k7[ARCUS_GROUPS], y5[ARCUS_GROUPS], comp5[ARCUS_GROUPS];
   REALV h_try[ARCUS_GROUPS];
   MASKV last[ARCUS_GROUPS];
   FOR_GROUPS(g) {
@@ -294,14 +315,15 @@ ARCUS_INLINE void dp_attempt(const field_desc* f, __global const REAL* data, con
   FOR_GROUPS(g) {
     ray6 t = ray_fma(k6[g], RC(B6),
                      ray_fma(k5[g], RC(B5), ray_fma(k4[g], RC(B4), ray_fma(k3[g], RC(B3), ray_scale(k1[g], RC(B1))))));
-    y5[g] = ray_step(y[g], h_try[g], t);
+    comp5[g] = comp[g];
+    y5[g] = ray_advance(y[g], h_try[g], t, &comp5[g]);
     k7[g] = ray_derivative(f, data, y5[g]);
   }
   FOR_GROUPS(g) {
     ray6 e = ray_fma(k7[g], RC(E7), ray_fma(k6[g], RC(E6), ray_fma(k5[g], RC(E5), ray_fma(k4[g], RC(E4),
                      ray_fma(k3[g], RC(E3), ray_scale(k1[g], RC(E1)))))));
-    accepted[g] = dp_decide(job, &y[g], &k1[g], &s[g], &h[g], &steps[g], &rejections[g], &status[g], h_try[g],
-                            last[g], y5[g], k7[g], ray_times(e, h_try[g]));
+    accepted[g] = dp_decide(job, &y[g], &comp[g], &k1[g], &s[g], &h[g], &steps[g], &rejections[g], &status[g],
+                            h_try[g], last[g], y5[g], comp5[g], k7[g], ray_times(e, h_try[g]));
   }
 }
 
@@ -329,7 +351,7 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global REAL* rays_ou
   const size_t first_vector = get_global_id(0) * ARCUS_GROUPS;
   const size_t stride = (size_t)job.stride;
 
-  ray6 y[ARCUS_GROUPS];
+  ray6 y[ARCUS_GROUPS], comp[ARCUS_GROUPS]; /* comp: see ray_advance */
   REALV s[ARCUS_GROUPS];
   IDXV steps[ARCUS_GROUPS], status[ARCUS_GROUPS];
 #ifdef ARCUS_FEATURE_RECORD_PATH
@@ -358,6 +380,7 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global REAL* rays_ou
     y[g].vx = n_over_len * dx;
     y[g].vy = n_over_len * dy;
     y[g].vz = n_over_len * dz;
+    comp[g] = ray_times(y[g], RC(0));
     s[g] = RC(0);
     steps[g] = 0;
     status[g] = SEL((IDXV)ARCUS_STATUS_INVALID_INPUT, (IDXV)ARCUS_STATUS_ACTIVE, valid);
@@ -394,7 +417,7 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global REAL* rays_ou
     }
 #endif
     MASKV accepted[ARCUS_GROUPS];
-    dp_attempt(f, field_data, &job, y, k1, s, h, steps, rejections, status, accepted);
+    dp_attempt(f, field_data, &job, y, comp, k1, s, h, steps, rejections, status, accepted);
     FOR_GROUPS(g) {
 #ifdef ARCUS_FEATURE_BOX
       MASKV left = clip_to_box(&job, y_old[g], s_old[g], &y[g], &s[g], accepted[g] & outside_box(&job, y[g]));
@@ -409,20 +432,23 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global REAL* rays_ou
    * box can stop rays early. */
   for (int k = 0; k < job.fixed_steps; ++k) {
     const REAL hk = (k == job.fixed_steps - 1) ? job.last_step : job.step;
-    ray6 y_new[ARCUS_GROUPS];
-    fixed_step(f, field_data, y, y_new, (REALV)hk);
+    ray6 y_new[ARCUS_GROUPS], comp_new[ARCUS_GROUPS];
+    FOR_GROUPS(g) comp_new[g] = comp[g];
+    fixed_step(f, field_data, y, y_new, comp_new, (REALV)hk);
     FOR_GROUPS(g) {
 #ifdef ARCUS_FEATURE_BOX
       MASKV active = status[g] == (IDXV)ARCUS_STATUS_ACTIVE;
       REALV s_new = s[g] + hk;
       MASKV left = clip_to_box(&job, y[g], s[g], &y_new[g], &s_new, active & outside_box(&job, y_new[g]));
       y[g] = ray_select(y[g], y_new[g], active);
+      comp[g] = ray_select(comp[g], comp_new[g], active);
       s[g] = SEL(s[g], s_new, active);
       steps[g] += ONE_IF(active);
       status[g] = SEL(status[g], (IDXV)ARCUS_STATUS_LEFT_BOX, left);
       RECORD(g, active);
 #else
       y[g] = y_new[g];
+      comp[g] = comp_new[g];
       RECORD(g, status[g] == (IDXV)ARCUS_STATUS_ACTIVE);
 #endif
     }
