@@ -453,8 +453,8 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global REAL* rays_ou
 #endif
     }
   }
-  /* The rays still active went the whole way, or as far as max_steps allowed. */
-  /* The host chose fixed_steps as the least n with n·step >= length, or max_steps. */
+  /* The rays still active went the whole way, or as far as max_steps allowed: the host
+   * chose fixed_steps as the least n with n·step >= length, or max_steps. */
   const int stopped_early = job.fixed_steps * job.step < job.length;
   const REAL s_end = stopped_early ? job.fixed_steps * job.step : job.length;
   FOR_GROUPS(g) {
