@@ -32,6 +32,13 @@ void copy_string(char* dst, size_t size, const std::string& src) {
   std::snprintf(dst, size, "%s", src.c_str());
 }
 
+// A power of two in 2..16 from the device's native double vector width.
+uint32_t cpu_lanes(cl_uint native_width) {
+  uint32_t lanes = 2;
+  while (lanes < 16 && lanes * 2 <= native_width) lanes *= 2;
+  return lanes;
+}
+
 std::vector<DeviceEntry> enumerate() {
   std::vector<DeviceEntry> out;
   cl_uint np = 0;
@@ -58,8 +65,9 @@ std::vector<DeviceEntry> enumerate() {
       e.info.fp64 = device_string(d, CL_DEVICE_EXTENSIONS).find("cl_khr_fp64") != std::string::npos ? 1 : 0;
       e.info.compute_units = device_value<cl_uint>(d, CL_DEVICE_MAX_COMPUTE_UNITS);
       e.info.global_memory = device_value<cl_ulong>(d, CL_DEVICE_GLOBAL_MEM_SIZE);
-      // CPUs (PoCL) want explicit vector lanes; GPUs one ray per work-item.
-      e.info.lanes = e.info.is_gpu ? 1 : 8;
+      // CPUs (PoCL) want explicit vector lanes, one SIMD register of doubles wide
+      // (8 with AVX-512, 4 with AVX2); GPUs one ray per work-item.
+      e.info.lanes = e.info.is_gpu ? 1 : cpu_lanes(device_value<cl_uint>(d, CL_DEVICE_NATIVE_VECTOR_WIDTH_DOUBLE));
       out.push_back(e);
     }
   }
