@@ -96,7 +96,10 @@ ARCUS_INLINE ray6 ray_advance(ray6 y, REALV h, ray6 t, ray6* comp) {
 #endif
 }
 
-ARCUS_INLINE MASKV ray_finite(ray6 y) { return isfinite(y.x + y.y + y.z + y.vx + y.vy + y.vz); }
+/* Each component on its own: a sum of large finite coordinates can overflow. */
+ARCUS_INLINE MASKV ray_finite(ray6 y) {
+  return isfinite(y.x) & isfinite(y.y) & isfinite(y.z) & isfinite(y.vx) & isfinite(y.vy) & isfinite(y.vz);
+}
 
 /* The groups advance in lockstep, one stage at a time for all of them, so each stage
  * offers ARCUS_GROUPS independent dependency chains to the core (a single chain is
@@ -327,8 +330,9 @@ ARCUS_INLINE void dp_attempt(const field_desc* f, __global const REAL* data, con
   }
 }
 
-/* First trial step when the caller gave none: 1% of the state's scale over the
- * derivative's (Hairer, Nørsett & Wanner's h0 heuristic, first stage), in [min, L]. */
+/* The first trial step: the caller's, else 1% of the state's scale over the
+ * derivative's (Hairer, Nørsett & Wanner's h0 heuristic, first stage); either way
+ * within max_step and [min_step, length], as every later step. */
 ARCUS_INLINE REALV dp_initial_step(const advance_desc* job, ray6 y, ray6 k) {
 #define DP_SCALE(c) (job->atol + job->rtol * fabs(y.c))
   REALV d0 = fmax(fmax(fabs(y.x) / DP_SCALE(x), fabs(y.y) / DP_SCALE(y)), fabs(y.z) / DP_SCALE(z));
@@ -338,6 +342,7 @@ ARCUS_INLINE REALV dp_initial_step(const advance_desc* job, ray6 y, ray6 k) {
 #undef DP_SCALE
   REALV h = RC(0.01) * d0 / d1;
   h = SEL(h, (REALV)RC(1e-6), !(h > RC(0)) | !isfinite(h));
+  if (job->step > RC(0)) h = (REALV)job->step;
   if (job->max_step > RC(0)) h = fmin(h, (REALV)job->max_step);
   return clamp(h, (REALV)job->min_step, (REALV)job->length);
 }
@@ -369,11 +374,17 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global REAL* rays_ou
     REALV x = VLOAD(v, rays_in), yy = VLOAD(v, rays_in + stride), z = VLOAD(v, rays_in + 2 * stride);
     REALV dx = VLOAD(v, rays_in + 3 * stride), dy = VLOAD(v, rays_in + 4 * stride);
     REALV dz = VLOAD(v, rays_in + 5 * stride);
-    REALV len2 = dx * dx + dy * dy + dz * dz;
-    MASKV valid = (len2 > RC(0)) & isfinite(len2) & isfinite(x + yy + z);
+    /* Scaled by its largest component first, so that no finite non-zero direction
+     * under- or overflows when squared (the host applies the same test). */
+    REALV dmax = fmax(fmax(fabs(dx), fabs(dy)), fabs(dz));
+    MASKV valid = (dmax > RC(0)) & isfinite(dx) & isfinite(dy) & isfinite(dz) & isfinite(x) & isfinite(yy) &
+                  isfinite(z); /* each component: fmax ignores NaNs */
+    dx /= dmax;
+    dy /= dmax;
+    dz /= dmax;
     REALV n, gx, gy, gz;
     field_eval(f, field_data, x, yy, z, &n, &gx, &gy, &gz);
-    REALV n_over_len = n * rsqrt(len2);
+    REALV n_over_len = n * rsqrt(dx * dx + dy * dy + dz * dz);
     y[g].x = x;
     y[g].y = yy;
     y[g].z = z;
@@ -396,7 +407,7 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global REAL* rays_ou
 #endif
 #ifdef ARCUS_METHOD_DP45
     k1[g] = ray_derivative(f, field_data, y[g]);
-    h[g] = job.step > RC(0) ? (REALV)job.step : dp_initial_step(&job, y[g], k1[g]);
+    h[g] = dp_initial_step(&job, y[g], k1[g]);
     rejections[g] = 0;
 #endif
   }
@@ -459,8 +470,8 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global REAL* rays_ou
   const REAL s_end = stopped_early ? job.fixed_steps * job.step : job.length;
   FOR_GROUPS(g) {
     MASKV active = status[g] == (IDXV)ARCUS_STATUS_ACTIVE;
+    s[g] = SEL(s[g], (REALV)s_end, active); /* exact, where summing the steps is not */
 #ifndef ARCUS_FEATURE_BOX
-    s[g] = SEL(s[g], (REALV)s_end, active);
     steps[g] = SEL(steps[g], (IDXV)job.fixed_steps, active);
 #endif
     status[g] = SEL(status[g], (IDXV)(stopped_early ? ARCUS_STATUS_STEP_LIMIT : ARCUS_STATUS_DONE), active);

@@ -33,7 +33,8 @@
  * the one matching its precision, so the layouts match by construction.
  *   linear:     n0, vec = gradient            linear n²:  n0 = a, vec = k
  *   Luneburg:   vec = centre, inv_radius2     fish-eye:   n0, vec = centre, inv_radius2
- *   atmosphere: refractivity = (n−1)·T/p [K/Pa], earth_radius, count = segments
+ *   atmosphere: refractivity = (n−1)·T/p [K/Pa], earth_radius (of the sphere),
+ *               geopotential_radius (US Standard Atmosphere 1976's r0), count = segments
  *   grid:       origin, inv_spacing, dims                                           */
 #define ARCUS_DECLARE_FIELD_DESC(NAME, R, I) \
   typedef struct NAME {                      \
@@ -41,6 +42,7 @@
     R inv_radius2;                           \
     R refractivity;                          \
     R earth_radius;                          \
+    R geopotential_radius;                   \
     R vec[3];                                \
     R origin[3];                             \
     R inv_spacing[3];                        \
@@ -68,7 +70,7 @@ ARCUS_INLINE void atmosphere_eval(const field_desc* f, ARCUS_GLOBAL const REAL* 
                                   REALV* n, REALV* gx, REALV* gy, REALV* gz) {
   REALV radius = f->spherical ? sqrt(x * x + y * y + z * z) : y;
   REALV h = f->spherical ? radius - f->earth_radius : y;
-  REALV ratio = f->earth_radius / (f->earth_radius + h);
+  REALV ratio = f->geopotential_radius / (f->geopotential_radius + h);
   REALV H = h * ratio;        /* geopotential height */
   REALV dH_dh = ratio * ratio;
   /* Branch-free scan over the (few) segments: every lane picks its own. */

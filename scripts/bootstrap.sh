@@ -22,7 +22,12 @@ fi
 
 PY=${PYTHON:-python3}
 if ! "$PY" -c 'import numpy, scipy, pytest, matplotlib' 2>/dev/null; then
-  echo "bootstrap: installing Python packages (numpy scipy pytest matplotlib)"
-  "$PY" -m pip install -q --disable-pip-version-check numpy scipy pytest matplotlib
+  echo "bootstrap: installing Python packages from PyPI (numpy scipy pytest matplotlib)"
+  if ! "$PY" -m pip --version > /dev/null 2>&1; then
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends python3-pip
+  fi
+  pip_install=("$PY" -m pip install -q --disable-pip-version-check numpy scipy pytest matplotlib)
+  # Debian's own python3 refuses pip installs into it (PEP 668) unless told otherwise.
+  "${pip_install[@]}" 2> /dev/null || "${pip_install[@]}" --break-system-packages
 fi
 echo "bootstrap: all dependencies present"

@@ -59,7 +59,7 @@ typedef enum arcus_status {
   ARCUS_ERROR_INVALID_ARGUMENT = 1, /* a null pointer, a bad number, a mismatched size  */
   ARCUS_ERROR_OUT_OF_MEMORY = 2,
   ARCUS_ERROR_DEVICE_NOT_FOUND = 3, /* no OpenCL device, or none matches the request    */
-  ARCUS_ERROR_UNSUPPORTED = 4,      /* e.g. double precision on a device without fp64  */
+  ARCUS_ERROR_UNSUPPORTED = 4,      /* double precision on a device without cl_khr_fp64 */
   ARCUS_ERROR_KERNEL_BUILD = 5,     /* the message holds the OpenCL compiler's log      */
   ARCUS_ERROR_OPENCL = 6,           /* an OpenCL call failed; the message names it      */
   ARCUS_ERROR_IO = 7,               /* a file could not be read                         */
@@ -110,7 +110,8 @@ ARCUS_API arcus_status arcus_context_release(arcus_context_t* ctx);
 ARCUS_API arcus_status arcus_context_get_device(arcus_context_t* ctx, arcus_device_info* info);
 /* Message of the last failed call on ctx ("" if none).  Valid until the next call. */
 ARCUS_API const char* arcus_context_last_error(arcus_context_t* ctx);
-/* Called (on the failing thread) for every error on ctx; NULL removes it. */
+/* Called (on the failing thread, after the context's lock is released, so it may call
+ * arcus) for every error on ctx; NULL removes it. */
 ARCUS_API arcus_status arcus_context_set_error_callback(arcus_context_t* ctx,
                                                         arcus_error_callback callback, void* user);
 
@@ -196,20 +197,25 @@ typedef enum arcus_method {
   ARCUS_METHOD_DP45 = 3   /* Dormand–Prince 5(4), FSAL, adaptive per ray */
 } arcus_method;
 
+/* Float resolves positions to about 6e-8 of their magnitude: ~0.5 m in Earth-centred
+ * coordinates of a spherical atmosphere, too coarse for mirages there.  Parameters and
+ * field values must fit in float (ARCUS_ERROR_INVALID_ARGUMENT otherwise). */
 typedef enum arcus_precision { ARCUS_PRECISION_DOUBLE = 0, ARCUS_PRECISION_FLOAT = 1 } arcus_precision;
 
 typedef struct arcus_advance_params {
   arcus_method method;
   arcus_precision precision;
   double length;          /* arc length to advance, metres (> 0)                       */
-  double step;            /* fixed step (Euler/RK2/RK4); initial step for DP45 (0: auto) */
+  double step;            /* fixed step (Euler/RK2/RK4); DP45: first trial step (0: auto),
+                           * kept within max_step and [min_step, length]                */
   double rtol, atol;      /* DP45 tolerances on position and v, per step (> 0)         */
   double min_step;        /* DP45: a step this small that still fails ends the ray     */
   double max_step;        /* DP45: upper bound on the step (0: unbounded).  For a Luneburg
                            * lens or a grid arcus also caps it at half the radius / the
                            * grid's smallest extent, so no step jumps over the medium. */
   uint32_t max_rejections;/* DP45: consecutive rejections before the ray fails         */
-  uint64_t max_steps;     /* accepted steps before the ray stops (ARCUS_RAY_STEP_LIMIT) */
+  uint64_t max_steps;     /* accepted steps before the ray stops (ARCUS_RAY_STEP_LIMIT);
+                           * values above 2^31 − 1 count as 2^31 − 1                   */
   int32_t use_box;        /* stop on leaving [box_min, box_max]                        */
   double box_min[3], box_max[3];
   int32_t record_path;    /* keep every net point of every path                        */

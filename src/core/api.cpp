@@ -25,59 +25,64 @@ namespace {
 
 thread_local std::string t_last_error;
 
-// Records a failure where the caller can read it, and tells the callback.
-void report(arcus_context_t* ctx, arcus_status status, const std::string& message) {
-  if (!ctx) {
-    t_last_error = message;
-    return;
-  }
-  ctx->last_error = message;
-  if (ctx->callback) ctx->callback(ctx->callback_user, status, ctx->last_error.c_str());
-}
-
 // A null handle: there is no context to keep the message on.
 arcus_status null_handle(const char* name) {
   t_last_error = std::string(name) + " is NULL";
   return ARCUS_ERROR_INVALID_ARGUMENT;
 }
 
-// Runs body (returning an arcus_status; exceptions become statuses) and reports any
-// failure against ctx (which may be null: then per thread).  The caller holds the lock.
+// Runs body (returning an arcus_status; exceptions become statuses) and leaves the
+// message of a failure in *message.
 template <class Body>
-arcus_status run_reporting(arcus_context_t* ctx, Body&& body) {
+arcus_status run_catching(Body&& body, std::string* message) {
   arcus_status status = ARCUS_SUCCESS;
-  std::string message;
   try {
-    status = body(&message);
+    status = body(message);
   } catch (const Error& e) {
     status = e.status();
-    message = e.what();
+    *message = e.what();
   } catch (const std::bad_alloc&) {
     status = ARCUS_ERROR_OUT_OF_MEMORY;
-    message = "out of host memory";
+    *message = "out of host memory";
   } catch (const std::exception& e) {
     status = ARCUS_ERROR_INVALID_ARGUMENT;
-    message = e.what();
+    *message = e.what();
   }
-  if (status != ARCUS_SUCCESS) report(ctx, status, message);
   return status;
 }
 
 // A call that needs no context (device queries, creation).
 template <class Body>
 arcus_status without_context(Body&& body) {
-  return run_reporting(nullptr, [&](std::string*) {
-    body();
-    return ARCUS_SUCCESS;
-  });
+  std::string message;
+  arcus_status status = run_catching(
+      [&](std::string*) {
+        body();
+        return ARCUS_SUCCESS;
+      },
+      &message);
+  if (status != ARCUS_SUCCESS) t_last_error = message;
+  return status;
 }
 
 // A call on ctx: null-checked, locked, errors kept on the context.
 template <class Body>
 arcus_status with_context(arcus_context_t* ctx, const char* handle_name, Body&& body) {
   if (!ctx) return null_handle(handle_name);
-  std::lock_guard<std::mutex> lock(ctx->lock);
-  return run_reporting(ctx, [&](std::string* message) { return body(message); });
+  std::string message;
+  arcus_status status;
+  arcus_error_callback callback;
+  void* user;
+  {
+    std::lock_guard<std::mutex> lock(ctx->lock);
+    status = run_catching(body, &message);
+    if (status != ARCUS_SUCCESS) ctx->last_error = message;
+    callback = ctx->callback;
+    user = ctx->callback_user;
+  }
+  // Outside the lock, so that the callback may call arcus (on this context too).
+  if (status != ARCUS_SUCCESS && callback) callback(user, status, message.c_str());
+  return status;
 }
 
 template <class Body>
@@ -324,11 +329,13 @@ arcus_status arcus_field_create_grid_from_file(arcus_context_t* ctx, const char*
     require_pointer(path, "path");
     require_pointer(dims, "dims");
     require(type == ARCUS_FLOAT32 || type == ARCUS_FLOAT64, "type must be ARCUS_FLOAT32 or ARCUS_FLOAT64");
-    const size_t count = size_t(dims[0]) * dims[1] * dims[2];
+    const size_t count = arcus::grid_value_count(dims, origin, spacing);
     const size_t width = type == ARCUS_FLOAT32 ? 4 : 8;
     std::ifstream file(path, std::ios::binary | std::ios::ate);
     if (!file) fail(ARCUS_ERROR_IO, std::string("path: cannot open '") + path + "'");
-    const auto size = static_cast<size_t>(file.tellg());
+    const std::streamoff end = file.tellg();
+    if (end < 0) fail(ARCUS_ERROR_IO, std::string("path: cannot read '") + path + "' (not a regular file?)");
+    const auto size = static_cast<size_t>(end);
     if (size != count * width)
       fail(ARCUS_ERROR_IO, std::string("path: '") + path + "' holds " + std::to_string(size) + " bytes, but " +
                                std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +

@@ -38,6 +38,7 @@ struct arcus_job_s {
   std::vector<double> positions, directions, lengths;  // count×3, count×3, count
   std::vector<uint64_t> steps;
   std::vector<int32_t> status;
+  uint32_t path_capacity = 0;          // points kept per ray
   std::vector<uint64_t> path_offsets;  // count+1 (empty without record_path)
   std::vector<uint64_t> path_needed;   // count
   std::vector<double> path_points;     // path_offsets[count]×3

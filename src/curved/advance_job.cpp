@@ -27,49 +27,83 @@ const char* method_name(arcus_method m) {
   }
 }
 
-bool finite3(const double* v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
+// Whether v survives conversion to the kernel's precision: finite, and not flushed to 0.
+bool representable(double v, bool single) {
+  if (!single) return std::isfinite(v);
+  const float f = static_cast<float>(v);
+  return std::isfinite(f) && (v == 0 || f != 0);
+}
 
 void validate(const arcus_advance_params& p, const arcus_field_t* field, const DeviceEntry& device) {
   require(p.method >= ARCUS_METHOD_EULER && p.method <= ARCUS_METHOD_DP45,
           "params.method = " + std::to_string(p.method) + " is not an arcus_method");
   require(p.precision == ARCUS_PRECISION_DOUBLE || p.precision == ARCUS_PRECISION_FLOAT,
           "params.precision = " + std::to_string(p.precision) + " is not an arcus_precision");
-  require(std::isfinite(p.length) && p.length > 0, "params.length must be positive and finite");
+  const bool single = p.precision == ARCUS_PRECISION_FLOAT;
+  const char* in = single ? " in float precision" : "";
+  auto number = [&](double v, const char* name) {
+    require(representable(v, single), std::string("params.") + name + " = " + std::to_string(v) +
+                                          " is not a finite number" + in);
+  };
+  number(p.length, "length");
+  require(p.length > 0, "params.length must be positive");
   const bool straight = field->desc.kind == ARCUS_KIND_CONSTANT;
   if (p.method == ARCUS_METHOD_DP45 && !straight) {
-    require(std::isfinite(p.rtol) && p.rtol > 0, "params.rtol must be positive (got " + std::to_string(p.rtol) + ")");
-    require(std::isfinite(p.atol) && p.atol > 0, "params.atol must be positive (got " + std::to_string(p.atol) + ")");
-    require(std::isfinite(p.step) && p.step >= 0, "params.step (the initial DP45 step) must be >= 0");
-    require(std::isfinite(p.min_step) && p.min_step >= 0, "params.min_step must be >= 0");
-    require(std::isfinite(p.max_step) && p.max_step >= 0, "params.max_step must be >= 0 (0: unbounded)");
+    number(p.rtol, "rtol");
+    number(p.atol, "atol");
+    number(p.step, "step");
+    number(p.min_step, "min_step");
+    number(p.max_step, "max_step");
+    require(p.rtol > 0, "params.rtol must be positive (got " + std::to_string(p.rtol) + ")");
+    require(p.atol > 0, "params.atol must be positive (got " + std::to_string(p.atol) + ")");
+    require(p.step >= 0, "params.step (the initial DP45 step, 0: automatic) must be >= 0");
+    require(p.min_step >= 0, "params.min_step must be >= 0");
+    require(p.min_step <= p.length, "params.min_step must not exceed params.length");
+    require(p.max_step >= 0, "params.max_step must be >= 0 (0: unbounded)");
     require(p.max_step == 0 || p.max_step >= p.min_step, "params.max_step must be >= params.min_step");
     require(p.max_rejections >= 1, "params.max_rejections must be at least 1");
   } else if (!straight) {
-    require(std::isfinite(p.step) && p.step > 0, std::string("params.step must be positive for ") +
-                                                     method_name(p.method));
+    number(p.step, "step");
+    require(p.step > 0, std::string("params.step must be positive for ") + method_name(p.method));
   }
   require(p.max_steps >= 1, "params.max_steps must be at least 1");
   require(p.use_box == 0 || p.use_box == 1, "params.use_box must be 0 or 1");
   if (p.use_box) {
-    require(finite3(p.box_min) && finite3(p.box_max), "params.box_min/box_max must be finite");
-    for (int a = 0; a < 3; ++a)
+    for (int a = 0; a < 3; ++a) {
+      number(p.box_min[a], "box_min");
+      number(p.box_max[a], "box_max");
       require(p.box_min[a] < p.box_max[a], "params.box_min[" + std::to_string(a) + "] must be < box_max");
+    }
   }
   require(p.record_path == 0 || p.record_path == 1, "params.record_path must be 0 or 1");
-  if (p.precision == ARCUS_PRECISION_DOUBLE && !device.info.fp64)
+  require(p.path_capacity <= static_cast<uint32_t>(std::numeric_limits<int32_t>::max()),
+          "params.path_capacity must be at most 2^31 - 1");
+  if (!single && !device.info.fp64)
     fail(ARCUS_ERROR_UNSUPPORTED, std::string("device '") + device.info.name +
                                       "' has no double precision (cl_khr_fp64); use ARCUS_PRECISION_FLOAT");
-  if (p.precision == ARCUS_PRECISION_FLOAT && !device.info.fp64)
-    fail(ARCUS_ERROR_UNSUPPORTED, std::string("device '") + device.info.name +
-                                      "' has no cl_khr_fp64, which arcus kernels need for their parameters");
+  if (single) {
+    const arcus_field_desc_d& f = field->desc;
+    const double values[] = {f.n0, f.inv_radius2, f.refractivity, f.earth_radius, f.geopotential_radius,
+                             f.vec[0], f.vec[1], f.vec[2], f.origin[0], f.origin[1], f.origin[2],
+                             f.inv_spacing[0], f.inv_spacing[1], f.inv_spacing[2]};
+    bool ok = std::all_of(std::begin(values), std::end(values), [](double v) { return representable(v, true); }) &&
+              std::all_of(field->data.begin(), field->data.end(), [](double v) { return representable(v, true); });
+    require(ok, "field: its parameters or values do not fit in float precision; use ARCUS_PRECISION_DOUBLE");
+  }
 }
 
-// Why a ray cannot be advanced, or nullptr.
-const char* ray_problem(const double* o, const double* d) {
-  if (!finite3(o)) return "origin is not finite";
-  if (!finite3(d)) return "direction is not finite";
-  if (d[0] == 0 && d[1] == 0 && d[2] == 0) return "direction is zero";
-  return nullptr;
+// Why a ray cannot be advanced in the kernel's precision ("" if it can): the kernel's
+// own test — a finite origin, and a finite direction with a non-zero component.
+std::string ray_problem(const double* o, const double* d, bool single) {
+  auto value = [single](double v) { return single ? static_cast<double>(static_cast<float>(v)) : v; };
+  const std::string in = single ? " in float precision" : "";
+  bool nonzero = false;
+  for (int a = 0; a < 3; ++a) {
+    if (!std::isfinite(value(o[a]))) return "origin is not finite" + in;
+    if (!std::isfinite(value(d[a]))) return "direction is not finite" + in;
+    nonzero |= value(d[a]) != 0;
+  }
+  return nonzero ? "" : "direction is zero" + in;
 }
 
 uint32_t env_choice(const char* name, uint32_t fallback, std::initializer_list<uint32_t> allowed) {
@@ -89,6 +123,7 @@ To field_desc_as(const From& f) {
   t.inv_radius2 = f.inv_radius2;
   t.refractivity = f.refractivity;
   t.earth_radius = f.earth_radius;
+  t.geopotential_radius = f.geopotential_radius;
   for (int a = 0; a < 3; ++a) {
     t.vec[a] = f.vec[a];
     t.origin[a] = f.origin[a];
@@ -102,7 +137,7 @@ To field_desc_as(const From& f) {
 }
 
 template <class Desc, class Real>
-Desc make_advance_desc(const arcus_advance_params& p, bool fixed, uint32_t capacity, size_t stride) {
+Desc make_advance_desc(const arcus_advance_params& p, bool fixed, size_t stride) {
   Desc d{};
   d.length = static_cast<Real>(p.length);
   d.step = static_cast<Real>(p.step);
@@ -117,7 +152,6 @@ Desc make_advance_desc(const arcus_advance_params& p, bool fixed, uint32_t capac
   const uint64_t int_max = static_cast<uint64_t>(std::numeric_limits<int32_t>::max());
   d.max_steps = static_cast<int32_t>(std::min<uint64_t>(p.max_steps, int_max));
   d.max_rejections = static_cast<int32_t>(std::min<uint64_t>(p.max_rejections, int_max));
-  d.path_capacity = static_cast<int32_t>(capacity);
   d.stride = static_cast<int32_t>(stride);
   if (fixed) {
     // The least n with n·step >= length, in the kernel's arithmetic; the last step
@@ -238,11 +272,27 @@ cl_mem field_buffer(arcus_field_t* field, cl_context ctx, bool single) {
   return m.get();
 }
 
+// Points kept per ray's path: the caller's path_capacity, else exactly enough for a
+// fixed-step path (the origin and every step), else (DP45) up to 4096 as long as all
+// rays' paths fit in 1 GiB.  Overflow is reported after the run, never silent.
+uint32_t path_capacity(const arcus_advance_params& p, bool fixed, int32_t fixed_steps, size_t count, size_t real_bytes) {
+  if (!p.record_path) return 0;
+  const double rays = static_cast<double>(std::max<size_t>(count, 1)), point_bytes = 3.0 * real_bytes;
+  double points = p.path_capacity;
+  if (!points && fixed) points = fixed_steps + 1.0;
+  if (!points) points = std::max(16.0, std::min<double>(kDefaultDpPathCapacity, kMaxPathBytes / (point_bytes * rays)));
+  if (points * point_bytes * rays > (p.path_capacity ? 1e18 : kMaxPathBytes))
+    fail(ARCUS_ERROR_OUT_OF_MEMORY, "record_path: " + std::to_string(count) + " paths of " +
+                                        std::to_string(static_cast<uint64_t>(points)) + " points need " +
+                                        std::to_string(points * point_bytes * rays / 1073741824.0) +
+                                        " GiB; set params.path_capacity or advance fewer rays");
+  return static_cast<uint32_t>(points);
+}
+
 // Runs the kernel in precision Real and stores the results into job.
 template <class Real, class FieldDesc, class AdvanceDesc>
 void run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params& p, const Launch& launch,
-         cl_program program, size_t count, const double* origins, const double* directions, uint32_t capacity,
-         arcus_job_t* job) {
+         cl_program program, size_t count, const double* origins, const double* directions, arcus_job_t* job) {
   cl_context clctx = ctx->runtime->context();
   const size_t per_item = static_cast<size_t>(launch.lanes) * launch.groups;
   const size_t items = std::max<size_t>(1, (count + per_item - 1) / per_item);
@@ -261,18 +311,23 @@ void run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
   ClMem out_buf = make_buffer(clctx, CL_MEM_WRITE_ONLY, ARCUS_OUT_COMPONENTS * stride * sizeof(Real));
   ClMem steps_buf = make_buffer(clctx, CL_MEM_WRITE_ONLY, stride * sizeof(cl_ulong));
   ClMem status_buf = make_buffer(clctx, CL_MEM_WRITE_ONLY, stride * sizeof(cl_int));
-  ClMem path_buf, points_buf;
-  if (p.record_path) {
-    path_buf = make_buffer(clctx, CL_MEM_WRITE_ONLY, stride * capacity * 3 * sizeof(Real));
-    points_buf = make_buffer(clctx, CL_MEM_WRITE_ONLY, stride * sizeof(cl_uint));
-  }
   cl_mem data = field_buffer(field, clctx, sizeof(Real) == sizeof(float));
   FieldDesc fdesc = field_desc_as<FieldDesc>(field->desc);
-  AdvanceDesc adesc = make_advance_desc<AdvanceDesc, Real>(p, fixed, capacity, stride);
+  AdvanceDesc adesc = make_advance_desc<AdvanceDesc, Real>(p, fixed, stride);
   adesc.max_step = static_cast<Real>(bounded_max_step(p, field->desc));
   if (launch.features & ARCUS_FEATURE_STRAIGHT) {
     adesc.fixed_steps = 1;
     adesc.step = adesc.last_step = adesc.length;
+  }
+  const bool dp45 = (launch.features & ARCUS_FEATURE_DP45) != 0;
+  const uint32_t capacity = path_capacity(p, !dp45, adesc.fixed_steps, count, sizeof(Real));
+  adesc.path_capacity = static_cast<int32_t>(capacity);
+  job->path_capacity = capacity;
+  // Only real rays record points (padding rays are invalid), so count × capacity.
+  ClMem path_buf, points_buf;
+  if (p.record_path) {
+    path_buf = make_buffer(clctx, CL_MEM_WRITE_ONLY, count * capacity * 3 * sizeof(Real));
+    points_buf = make_buffer(clctx, CL_MEM_WRITE_ONLY, stride * sizeof(cl_uint));
   }
 
   cl_int err = CL_SUCCESS;
@@ -321,7 +376,7 @@ void run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
   if (p.record_path) {
     std::vector<cl_uint> needed(stride);
     read_buffer(ctx->queue.get(), points_buf, stride * sizeof(cl_uint), needed.data());
-    std::vector<Real> points(stride * capacity * 3);
+    std::vector<Real> points(count * capacity * 3);
     read_buffer(ctx->queue.get(), path_buf, points.size() * sizeof(Real), points.data());
     job->path_offsets.assign(count + 1, 0);
     job->path_needed.assign(needed.begin(), needed.begin() + count);
@@ -334,24 +389,6 @@ void run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
                 job->path_points.begin() + 3 * job->path_offsets[i]);
     }
   }
-}
-
-uint32_t path_capacity(const arcus_advance_params& p, const arcus_field_t* field, size_t count) {
-  if (!p.record_path) return 0;
-  if (p.path_capacity) return p.path_capacity;
-  const size_t point_bytes = 3 * (p.precision == ARCUS_PRECISION_FLOAT ? sizeof(float) : sizeof(double));
-  if (field->desc.kind == ARCUS_KIND_CONSTANT) return 2;
-  if (p.method != ARCUS_METHOD_DP45) {
-    // Exactly enough for a fixed-step path: the origin and every step.
-    double points = std::ceil(p.length / p.step) + 2;
-    if (points * point_bytes * static_cast<double>(count) > kMaxPathBytes)
-      fail(ARCUS_ERROR_OUT_OF_MEMORY, "record_path: " + std::to_string(count) + " paths of " +
-                                          std::to_string(static_cast<uint64_t>(points)) +
-                                          " points exceed 1 GiB; set params.path_capacity or advance fewer rays");
-    return static_cast<uint32_t>(std::min(points, double(p.max_steps) + 1));
-  }
-  double fit = kMaxPathBytes / (point_bytes * std::max<size_t>(count, 1));
-  return static_cast<uint32_t>(std::max(16.0, std::min<double>(kDefaultDpPathCapacity, fit)));
 }
 
 }  // namespace
@@ -392,16 +429,7 @@ arcus_status advance(arcus_context_t* ctx, arcus_field_t* field, const arcus_adv
   const DeviceEntry& device = ctx->runtime->entry();
   validate(p, field, device);
 
-  // Bad rays are reported, and the rest of the batch still runs.
-  size_t bad = 0;
-  std::string first_bad;
-  for (size_t i = 0; i < count; ++i)
-    if (const char* why = ray_problem(origins + 3 * i, directions + 3 * i)) {
-      if (bad++ < 3) first_bad += (first_bad.empty() ? "" : "; ") + ("ray " + std::to_string(i) + ": " + why);
-    }
-
   Launch launch = plan(p, field, device);
-  const uint32_t capacity = path_capacity(p, field, count);
   BuiltProgram program = ctx->runtime->program(launch.options);
 
   auto job = std::make_unique<arcus_job_s>();
@@ -414,15 +442,27 @@ arcus_status advance(arcus_context_t* ctx, arcus_field_t* field, const arcus_adv
   if (count > 0) {
     if (p.precision == ARCUS_PRECISION_FLOAT)
       run<float, arcus_field_desc_f, arcus_advance_desc_f>(ctx, field, p, launch, program.program, count, origins,
-                                                            directions, capacity, job.get());
+                                                            directions, job.get());
     else
       run<double, arcus_field_desc_d, arcus_advance_desc_d>(ctx, field, p, launch, program.program, count,
-                                                             origins, directions, capacity, job.get());
+                                                             origins, directions, job.get());
   } else if (p.record_path) {
     job->path_offsets.assign(1, 0);
   }
   job->stats.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
+  // Bad rays are counted as the kernel judged them, explained by the host's same test.
+  const bool single = p.precision == ARCUS_PRECISION_FLOAT;
+  size_t bad = 0;
+  std::string first_bad;
+  for (size_t i = 0; i < count; ++i)
+    if (job->status[i] == ARCUS_RAY_INVALID_INPUT && bad++ < 3) {
+      std::string why = ray_problem(origins + 3 * i, directions + 3 * i, single);
+      first_bad += (first_bad.empty() ? "" : "; ") + ("ray " + std::to_string(i) + ": " +
+                                                      (why.empty() ? "invalid input" : why));
+    }
+
+  const uint32_t capacity = job->path_capacity;
   size_t overflowed = 0;
   uint64_t longest = 0;
   for (size_t i = 0; i < job->path_needed.size(); ++i)

@@ -15,8 +15,9 @@ constexpr double kStdBase[] = {0.0, 11000.0, 20000.0, 32000.0, 47000.0, 51000.0,
 constexpr double kStdLapse[] = {-0.0065, 0.0, 0.001, 0.0028, 0.0, -0.0028, -0.002, 0.0};
 constexpr int kStdLayers = 8;
 constexpr double kTopGeometric = 84000.0;  // inversions must end below the table's top
+constexpr double kGeopotentialRadius = 6356766.0;  // r0 of the 1976 standard's H = r0·h/(r0 + h)
 
-double geopotential(double h, double earth_radius) { return earth_radius * h / (earth_radius + h); }
+double geopotential(double h, double r0) { return r0 * h / (r0 + h); }
 
 // Standard temperature at geopotential height H for a given sea-level temperature.
 double standard_temperature(double H, double t0) {
@@ -68,7 +69,7 @@ void build_atmosphere(const arcus_atmosphere_desc& desc, arcus_field_desc_d* fie
   require(finite_positive(desc.sea_level_pressure), "atmosphere: sea_level_pressure must be positive (Pa)");
   require(desc.inversion_count == 0 || desc.inversions, "atmosphere: inversions is NULL but inversion_count > 0");
 
-  const double R = ARCUS_EARTH_RADIUS;
+  const double R = kGeopotentialRadius;
   std::vector<Layer> layers;
   std::vector<double> breaks(kStdBase, kStdBase + kStdLayers);
   for (uint32_t i = 0; i < desc.inversion_count; ++i) {
@@ -110,16 +111,15 @@ void build_atmosphere(const arcus_atmosphere_desc& desc, arcus_field_desc_d* fie
   *field = arcus_field_desc_d{};
   field->kind = ARCUS_KIND_ATMOSPHERE;
   field->spherical = desc.spherical;
-  field->earth_radius = R;
+  field->earth_radius = ARCUS_EARTH_RADIUS;
+  field->geopotential_radius = kGeopotentialRadius;
   field->count = static_cast<int32_t>(breaks.size());
   // n − 1 = K·p/T: Ciddor's standard refractivity scaled by density (ideal gas; the
   // compressibility of air changes n − 1 by < 0.05 %).
   field->refractivity = ciddor_standard_refractivity(desc.wavelength) * 288.15 / 101325.0;
 }
 
-void build_grid(const double* values, const uint32_t dims[3], const double origin[3], const double spacing[3],
-                arcus_field_desc_d* field, std::vector<double>* data) {
-  require_pointer(values, "values");
+size_t grid_value_count(const uint32_t dims[3], const double origin[3], const double spacing[3]) {
   require_pointer(dims, "dims");
   require_pointer(origin, "origin");
   require_pointer(spacing, "spacing");
@@ -132,6 +132,13 @@ void build_grid(const double* values, const uint32_t dims[3], const double origi
     count *= dims[a];
   }
   require(count <= (size_t(1) << 31), "grid: more than 2^31 values");
+  return count;
+}
+
+void build_grid(const double* values, const uint32_t dims[3], const double origin[3], const double spacing[3],
+                arcus_field_desc_d* field, std::vector<double>* data) {
+  const size_t count = grid_value_count(dims, origin, spacing);
+  require_pointer(values, "values");
   for (size_t i = 0; i < count; ++i)
     require(finite_positive(values[i]), "grid: values[" + std::to_string(i) + "] = " + std::to_string(values[i]) +
                                             " is not a positive finite index of refraction");

@@ -17,6 +17,9 @@ double ciddor_standard_refractivity(double wavelength_nm);
 // temperature, plus the inversion layers (thesis §3.1.1).  Throws on bad input.
 void build_atmosphere(const arcus_atmosphere_desc& desc, arcus_field_desc_d* field, std::vector<double>* segments);
 
+// Checks a grid's dims (each 2..65536), origin and spacing; returns the value count.
+size_t grid_value_count(const uint32_t dims[3], const double origin[3], const double spacing[3]);
+
 // Checks a grid's description and values (finite, positive) and fills `field`.
 void build_grid(const double* values, const uint32_t dims[3], const double origin[3], const double spacing[3],
                 arcus_field_desc_d* field, std::vector<double>* data);
