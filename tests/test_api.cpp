@@ -338,9 +338,7 @@ TEST_F(Api, FeaturesReportedPerJob) {
   };
   EXPECT_EQ(features(atm.get(), dp45(1.0, 1e-9, 1e-12)), ARCUS_FEATURE_DP45 | ARCUS_FEATURE_ATMOSPHERE);
   arcus_advance_params p = fixed(ARCUS_METHOD_RK4, 0.1, 1.0);
-  p.use_box = 1;
-  p.box_min[0] = p.box_min[1] = p.box_min[2] = -10;
-  p.box_max[0] = p.box_max[1] = p.box_max[2] = 10;
+  set_box(&p, {-10, -10, -10}, {10, 10, 10});
   p.record_path = 1;
   EXPECT_EQ(features(lin.get(), p),
             ARCUS_FEATURE_RK4 | ARCUS_FEATURE_ANALYTIC_FIELD | ARCUS_FEATURE_BOX | ARCUS_FEATURE_RECORD_PATH);

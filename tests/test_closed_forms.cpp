@@ -154,10 +154,7 @@ TEST_F(ClosedForms, LuneburgLensFocusesParallelRaysOnTheFarSide) {
   // "The end state is where the path crossed the box": the crossing of the computed path,
   // so the only error is the integration error, dp45_bound over the ≤ 4R of path (n from
   // 1 to √2).
-  p.use_box = 1;
-  const V3 lo = c - V3{2 * R, 2 * R, 2 * R}, hi = c + V3{R, 2 * R, 2 * R};
-  std::copy(lo.begin(), lo.end(), p.box_min);
-  std::copy(hi.begin(), hi.end(), p.box_max);
+  set_box(&p, c - V3{2 * R, 2 * R, 2 * R}, c + V3{R, 2 * R, 2 * R});
   const std::vector<std::pair<double, double>> impacts{{0, 0}, {0.1, 0}, {0.4, 0}, {0, -0.6}, {0.3, 0.4}, {-0.8, 0}, {0.5, -0.5}};
   Rays rays;
   for (const auto& b : impacts) rays.add(c + V3{-1.5 * R, b.first * R, b.second * R}, {1, 0, 0});
@@ -261,10 +258,7 @@ TEST_F(ClosedForms, ConstantFieldBoxExitIsTheExactIntersection) {
   const double eps = 16 * std::numeric_limits<double>::epsilon() * 10.0;
   for (arcus_method m : {ARCUS_METHOD_DP45, ARCUS_METHOD_RK4}) {
     arcus_advance_params p = m == ARCUS_METHOD_DP45 ? dp45(100.0, 1e-9, 1e-12) : fixed(m, 0.5, 100.0);
-    p.use_box = 1;
-    const double lo[3] = {-1, -2, -3}, hi[3] = {4, 5, 6};
-    std::copy(lo, lo + 3, p.box_min);
-    std::copy(hi, hi + 3, p.box_max);
+    set_box(&p, {-1, -2, -3}, {4, 5, 6});
     const Trace t = trace(ctx(), field.get(), p, rays);
     EXPECT_EQ(t.status, ARCUS_SUCCESS) << "method " << m << ": " << last_error();
     if (t.status != ARCUS_SUCCESS) continue;

@@ -133,11 +133,7 @@ TEST_F(EdgeCases, FixedStepLengthIsExactWithABox) {
   rays.add({0, 0, 0}, {1, 0, 0});
   arcus_advance_params p = fixed(ARCUS_METHOD_RK4, 0.01, 1000.0);
   p.precision = ARCUS_PRECISION_FLOAT;
-  p.use_box = 1;
-  for (int a = 0; a < 3; ++a) {
-    p.box_min[a] = -1e5;
-    p.box_max[a] = 1e5;
-  }
+  set_box(&p, {-1e5, -1e5, -1e5}, {1e5, 1e5, 1e5});
   Trace t = trace(ctx(), medium.get(), p, rays);
   ASSERT_EQ(t.status, ARCUS_SUCCESS) << last_error();
   EXPECT_EQ(t.ray_status[0], ARCUS_RAY_DONE);

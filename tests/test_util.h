@@ -160,6 +160,13 @@ inline arcus_advance_params fixed(arcus_method method, double step, double lengt
   return p;
 }
 
+// Stops rays on leaving the box [lo, hi].
+inline void set_box(arcus_advance_params* p, const V3& lo, const V3& hi) {
+  p->use_box = 1;
+  std::copy(lo.begin(), lo.end(), p->box_min);
+  std::copy(hi.begin(), hi.end(), p->box_max);
+}
+
 // ---- rays in, results out ----------------------------------------------------------
 struct Rays {
   std::vector<double> origins, directions;
