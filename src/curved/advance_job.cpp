@@ -136,11 +136,14 @@ To field_desc_as(const From& f) {
   return t;
 }
 
+// fixed_step: the fixed step, the whole length for a straight job, 0 for DP45 (which reads
+// p.step as its first trial step).
 template <class Desc, class Real>
-Desc make_advance_desc(const arcus_advance_params& p, bool fixed, size_t stride) {
+Desc make_advance_desc(const arcus_advance_params& p, double fixed_step, size_t stride) {
   Desc d{};
+  const bool fixed = fixed_step > 0;
   d.length = static_cast<Real>(p.length);
-  d.step = static_cast<Real>(p.step);
+  d.step = static_cast<Real>(fixed ? fixed_step : p.step);
   d.rtol = static_cast<Real>(p.rtol);
   d.atol = static_cast<Real>(p.atol);
   d.min_step = static_cast<Real>(p.min_step);
@@ -154,11 +157,10 @@ Desc make_advance_desc(const arcus_advance_params& p, bool fixed, size_t stride)
   d.max_rejections = static_cast<int32_t>(std::min<uint64_t>(p.max_rejections, int_max));
   d.stride = static_cast<int32_t>(stride);
   if (fixed) {
-    // The least n with n·step >= length, in the kernel's arithmetic; the last step
-    // ends exactly at `length`.  Capped by max_steps (the kernel then reports it).
+    // The least n with n·step >= length, in the kernel's arithmetic, so the last step
+    // ends exactly at `length`; capped by max_steps (the kernel then reports it).  When
+    // max_steps stops the ray first, that n is never needed (and may not fit an int).
     const Real L = d.length, h = d.step;
-    // n from the division, corrected to the least n in Real arithmetic; when max_steps
-    // stops the ray first, that n is never needed (and may not fit in an int).
     const uint64_t max_steps = std::min<uint64_t>(p.max_steps, int_max);
     double n = std::max(1.0, std::ceil(static_cast<double>(L / h)));
     const bool capped = n > static_cast<double>(max_steps) + 1.0;
@@ -297,7 +299,8 @@ void run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
   const size_t per_item = static_cast<size_t>(launch.lanes) * launch.groups;
   const size_t items = std::max<size_t>(1, (count + per_item - 1) / per_item);
   const size_t stride = items * per_item;
-  const bool fixed = (launch.features & (ARCUS_FEATURE_DP45 | ARCUS_FEATURE_STRAIGHT)) == 0;
+  const bool dp45 = (launch.features & ARCUS_FEATURE_DP45) != 0;
+  const bool straight = (launch.features & ARCUS_FEATURE_STRAIGHT) != 0;
 
   // Structure-of-arrays input; padding rays have a zero direction, so the kernel
   // marks them invalid and they never take a step.
@@ -313,13 +316,8 @@ void run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
   ClMem status_buf = make_buffer(clctx, CL_MEM_WRITE_ONLY, stride * sizeof(cl_int));
   cl_mem data = field_buffer(field, clctx, sizeof(Real) == sizeof(float));
   FieldDesc fdesc = field_desc_as<FieldDesc>(field->desc);
-  AdvanceDesc adesc = make_advance_desc<AdvanceDesc, Real>(p, fixed, stride);
+  AdvanceDesc adesc = make_advance_desc<AdvanceDesc, Real>(p, dp45 ? 0.0 : straight ? p.length : p.step, stride);
   adesc.max_step = static_cast<Real>(bounded_max_step(p, field->desc));
-  if (launch.features & ARCUS_FEATURE_STRAIGHT) {
-    adesc.fixed_steps = 1;
-    adesc.step = adesc.last_step = adesc.length;
-  }
-  const bool dp45 = (launch.features & ARCUS_FEATURE_DP45) != 0;
   const uint32_t capacity = path_capacity(p, !dp45, adesc.fixed_steps, count, sizeof(Real));
   adesc.path_capacity = static_cast<int32_t>(capacity);
   job->path_capacity = capacity;
