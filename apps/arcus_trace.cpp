@@ -482,7 +482,7 @@ struct Results {
   std::vector<int32_t> ray_status;
   std::vector<uint64_t> path_offsets, path_needed;  // empty without record_path
   std::vector<double> path_points;
-  uint32_t features = 0;
+  arcus_features features = 0;
   arcus_job_stats stats{};
 };
 
@@ -492,7 +492,7 @@ Job advance(arcus_context_t* ctx, arcus_field_t* field, const Scene& scene, Resu
   results->count = scene.origins.size() / 3;
   arcus_job_t* job = nullptr;
   arcus_status s =
-      arcus_advance(ctx, field, &scene.params, results->count, scene.origins.data(), scene.directions.data(), &job);
+      arcus_advance(ctx, field, &scene.params, results->count, scene.origins.data(), scene.directions.data(), nullptr, &job);
   if (partial_result(s)) {
     results->status = s;
     results->message = arcus_context_last_error(ctx);
@@ -589,7 +589,7 @@ void write_scene_copy(const fs::path& file, const Scene& scene) {
   close_output(out, file);
 }
 
-std::string features_string(uint32_t features) {
+std::string features_string(arcus_features features) {
   char buf[512];
   if (arcus_features_to_string(features, buf, sizeof buf) != ARCUS_SUCCESS) return "(unavailable)";
   return buf;
@@ -624,7 +624,7 @@ void write_summary(const fs::path& file, const Scene& scene, const arcus_device_
       << "| program build | kernel | total (arcus_advance) | program cache hit | lanes | groups |\n"
       << "|---|---|---|---|---|---|\n"
       << "| " << r.stats.build_seconds << " s | " << r.stats.kernel_seconds << " s | " << r.stats.total_seconds
-      << " s | " << (r.stats.cache_hit ? "yes" : "no") << " | " << r.stats.lanes << " | " << r.stats.groups
+      << " s | " << (r.stats.program_origin != ARCUS_PROGRAM_BUILT ? "yes" : "no") << " | " << r.stats.lanes << " | " << r.stats.groups
       << " |\n\n## Rays per status\n\n";
   write_status_table(out, r);
   close_output(out, file);

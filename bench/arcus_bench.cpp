@@ -366,7 +366,7 @@ class ArcusBench {
   Run run(const Setting& s, std::size_t count) {
     const arcus_advance_params params = params_for(s);
     arcus_job_t* raw = nullptr;
-    check(arcus_advance(ctx_, field(s.gradient), &params, count, rays_.origins.data(), rays_.directions.data(), &raw),
+    check(arcus_advance(ctx_, field(s.gradient), &params, count, rays_.origins.data(), rays_.directions.data(), nullptr, &raw),
           ctx_, std::string("arcus_advance (") + method_name(s.method) + ")");
     JobPtr job(raw);
     Run r;

@@ -42,7 +42,7 @@ int main(void) {
   params.rtol = 1e-9;
   params.atol = 1e-12;
   params.length = 100.0;
-  st = arcus_advance(ctx, field, &params, RAYS, origins, directions, &job);
+  st = arcus_advance(ctx, field, &params, RAYS, origins, directions, NULL, &job);
   if (st != ARCUS_SUCCESS) goto fail;
   st = arcus_job_get_end_states(job, positions, ends, steps, status, NULL);
   if (st != ARCUS_SUCCESS) goto fail;

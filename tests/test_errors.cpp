@@ -88,7 +88,7 @@ TEST_F(BadInput, NonPositiveOrNonFiniteAdvanceParametersAreRejected) {
   const double o[3] = {0, 0, 0}, d[3] = {1, 0, 0};
   auto run = [&](const arcus_advance_params& p) {
     arcus_job_t* job = reinterpret_cast<arcus_job_t*>(0x1);  // must be overwritten with NULL
-    const arcus_status st = arcus_advance(ctx(), field.get(), &p, 1, o, d, &job);
+    const arcus_status st = arcus_advance(ctx(), field.get(), &p, 1, o, d, nullptr, &job);
     EXPECT_EQ(job, nullptr) << "no job on " << arcus_status_string(st);
     if (job && job != reinterpret_cast<arcus_job_t*>(0x1)) arcus_job_release(job);
     return st;
@@ -197,7 +197,7 @@ TEST(NullPointers, EveryGlobalFunctionRejectsNullOutputs) {
   EXPECT_EQ(arcus_job_get_path_size(nullptr, &count), ARCUS_ERROR_INVALID_ARGUMENT);
   uint64_t off[2];
   EXPECT_EQ(arcus_job_get_paths(nullptr, off, nullptr, nullptr), ARCUS_ERROR_INVALID_ARGUMENT);
-  uint32_t features;
+  arcus_features features;
   EXPECT_EQ(arcus_job_get_features(nullptr, &features), ARCUS_ERROR_INVALID_ARGUMENT);
   arcus_job_stats stats;
   EXPECT_EQ(arcus_job_get_stats(nullptr, &stats), ARCUS_ERROR_INVALID_ARGUMENT);
@@ -273,12 +273,12 @@ TEST_F(BadInput, EveryContextFunctionRejectsNullArguments) {
   arcus_advance_params p = dp45(1.0, 1e-9, 1e-12);
   const double o[3] = {0, 0, 0}, dir[3] = {1, 0, 0};
   arcus_job_t* job = nullptr;
-  EXPECT_EQ(arcus_advance(nullptr, field.get(), &p, 1, o, dir, &job), ARCUS_ERROR_INVALID_ARGUMENT);
-  expect_invalid(arcus_advance(ctx(), nullptr, &p, 1, o, dir, &job), "field", "advance field");
-  expect_invalid(arcus_advance(ctx(), field.get(), nullptr, 1, o, dir, &job), "params", "advance params");
-  expect_invalid(arcus_advance(ctx(), field.get(), &p, 1, nullptr, dir, &job), "origins", "advance origins");
-  expect_invalid(arcus_advance(ctx(), field.get(), &p, 1, o, nullptr, &job), "directions", "advance directions");
-  expect_invalid(arcus_advance(ctx(), field.get(), &p, 1, o, dir, nullptr), "job", "advance job");
+  EXPECT_EQ(arcus_advance(nullptr, field.get(), &p, 1, o, dir, nullptr, &job), ARCUS_ERROR_INVALID_ARGUMENT);
+  expect_invalid(arcus_advance(ctx(), nullptr, &p, 1, o, dir, nullptr, &job), "field", "advance field");
+  expect_invalid(arcus_advance(ctx(), field.get(), nullptr, 1, o, dir, nullptr, &job), "params", "advance params");
+  expect_invalid(arcus_advance(ctx(), field.get(), &p, 1, nullptr, dir, nullptr, &job), "origins", "advance origins");
+  expect_invalid(arcus_advance(ctx(), field.get(), &p, 1, o, nullptr, nullptr, &job), "directions", "advance directions");
+  expect_invalid(arcus_advance(ctx(), field.get(), &p, 1, o, dir, nullptr, nullptr), "job", "advance job");
   EXPECT_EQ(job, nullptr);
 
   // Job accessors with a valid job and NULL outputs.
@@ -429,7 +429,7 @@ TEST_F(BadInput, ErrorCallbackSeesEveryErrorUntilRemoved) {
   arcus_advance_params p = dp45(-1.0, 1e-9, 1e-12);
   const double o[3] = {0, 0, 0}, d[3] = {1, 0, 0};
   arcus_job_t* job = nullptr;
-  EXPECT_EQ(arcus_advance(ctx(), ok.get(), &p, 1, o, d, &job), ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(arcus_advance(ctx(), ok.get(), &p, 1, o, d, nullptr, &job), ARCUS_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(seen.calls, 2);
   EXPECT_TRUE(contains_ci(seen.message.c_str(), "length")) << seen.message;
   // Removed: no more calls.

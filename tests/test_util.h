@@ -185,7 +185,7 @@ struct Trace {
   std::vector<double> positions, directions, lengths;
   std::vector<uint64_t> steps;
   std::vector<int32_t> ray_status;
-  uint32_t features = 0;
+  arcus_features features = 0;
 
   size_t size() const { return lengths.size(); }
   V3 pos(size_t i) const { return {positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]}; }
@@ -197,7 +197,7 @@ struct Trace {
 inline Trace trace(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params& params, const Rays& rays) {
   Trace t;
   arcus_job_t* job = nullptr;
-  t.status = arcus_advance(ctx, field, &params, rays.size(), rays.origins.data(), rays.directions.data(), &job);
+  t.status = arcus_advance(ctx, field, &params, rays.size(), rays.origins.data(), rays.directions.data(), nullptr, &job);
   t.job.reset(job);
   if (!job) return t;
   size_t count = 0;

@@ -1,52 +1,54 @@
-// The objects behind the public handles.  Each holds a reference count; fields and
-// jobs retain their context.  Every call on a context serialises on ctx->lock.
+// The object behind arcus_context_t, and how the objects of a context live and die.
+// Every call on a context serialises on ctx->lock.
 #pragma once
 
 #include <atomic>
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <string>
-#include <vector>
 
-#include "arcus/arcus.h"
+#include "arcus/arcus_core.h"
+#include "core/handle.h"
 #include "core/opencl.h"
 #include "core/runtime.h"
-#include "field.h"
 
-struct arcus_context_s {
-  std::atomic<int> refs{1};
+struct arcus_context_s : arcus::Handle {
+  explicit arcus_context_s(std::shared_ptr<arcus::DeviceRuntime> rt);
+
   std::mutex lock;
   std::shared_ptr<arcus::DeviceRuntime> runtime;
   arcus::ClQueue queue;
+  arcus_device_info info;  // the device as this context's jobs see it (tests may narrow it)
   std::string last_error;
   arcus_error_callback callback = nullptr;
   void* callback_user = nullptr;
-};
-
-struct arcus_field_s {
-  std::atomic<int> refs{1};
-  arcus_context_t* ctx = nullptr;  // retained
-  arcus_field_desc_d desc{};       // kind, parameters (double)
-  std::vector<double> data;        // atmosphere segments or grid values
-  arcus::ClMem device_data[2];     // data uploaded per precision (double, float), lazily
-};
-
-struct arcus_job_s {
-  std::atomic<int> refs{1};
-  arcus_context_t* ctx = nullptr;  // retained
-  size_t count = 0;
-  std::vector<double> positions, directions, lengths;  // count×3, count×3, count
-  std::vector<uint64_t> steps;
-  std::vector<int32_t> status;
-  uint32_t path_capacity = 0;          // points kept per ray
-  std::vector<uint64_t> path_offsets;  // count+1 (empty without record_path)
-  std::vector<uint64_t> path_needed;   // count
-  std::vector<double> path_points;     // path_offsets[count]×3
-  uint32_t features = 0;
-  arcus_job_stats stats{};
+  // Bytes of device memory held by this context's buffers (shared with the buffers,
+  // which may outlive the context object's lock but not its accounting).
+  std::shared_ptr<std::atomic<uint64_t>> device_bytes = std::make_shared<std::atomic<uint64_t>>(0);
 };
 
 namespace arcus {
-// Releases one reference; frees at zero.  Shared by the C entry points.
+
+// Ownership: an object of a context holds a reference to it, taken at creation.
+void retain_context(arcus_context_t* ctx);
 void release_context(arcus_context_t* ctx);
+
+// Drops a reference to an object of a context (a field, job, scene); the last one
+// deletes it under its context's lock and then releases the context.
+void release_object(Handle* object);
+
+// The context of a live object (itself for a context).
+arcus_context_t* context_of(Handle* h);
+
+// Items (rays, photons) are spread over work-items of one lane group each ... the local
+// work size arcus launches with: 1 on CPUs (PoCL runs a work-group on one thread, and
+// many small groups balance uneven work over the cores), the driver's choice on GPUs.
+size_t local_work_size(const arcus_context_t* ctx);
+
+namespace testing {
+// Makes ctx's jobs see a device without double precision (ARCUS_ERROR_UNSUPPORTED).
+void set_fp64(arcus_context_t* ctx, bool fp64);
+}  // namespace testing
+
 }  // namespace arcus

@@ -1,131 +1,159 @@
 #include "core/runtime.h"
 
-#include <algorithm>
-#include <cctype>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
 #include <chrono>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <vector>
 
 #include "core/error.h"
+#include "core/features.h"
 
 namespace arcus {
 namespace {
 
-std::string device_string(cl_device_id d, cl_device_info what) {
+namespace fs = std::filesystem;
+
+std::mutex g_extra_mutex;
+std::string g_extra_options;
+
+std::string extra_options() {
+  std::lock_guard<std::mutex> lock(g_extra_mutex);
+  return g_extra_options;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string build_log(cl_program program, cl_device_id device) {
   size_t size = 0;
-  if (clGetDeviceInfo(d, what, 0, nullptr, &size) != CL_SUCCESS || size == 0) return "";
-  std::string s(size, '\0');
-  clGetDeviceInfo(d, what, size, &s[0], nullptr);
-  s.resize(std::strlen(s.c_str()));
-  return s;
+  clGetProgramBuildInfo(program, device, CL_PROGRAM_BUILD_LOG, 0, nullptr, &size);
+  std::string log(size, '\0');
+  if (size) clGetProgramBuildInfo(program, device, CL_PROGRAM_BUILD_LOG, size, &log[0], nullptr);
+  log.resize(std::strlen(log.c_str()));
+  return log;
 }
 
-template <class T>
-T device_value(cl_device_id d, cl_device_info what) {
-  T v{};
-  clGetDeviceInfo(d, what, sizeof v, &v, nullptr);
-  return v;
+// ---- the program cache on disk --------------------------------------------------------
+// A file holds: the magic line, the key it was stored under (compared in full, so a
+// hash collision cannot hand back another program), the binary, and a checksum of the
+// binary.  Anything that does not match is rebuilt, never trusted.
+constexpr char kMagic[] = "arcus program cache 1\n";
+
+std::string cache_key(const DeviceEntry& d, const std::string& options, const std::string& text) {
+  const uint64_t source_hash = fnv1a64(text.data(), text.size());
+  char hash[32];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(source_hash));
+  return std::string("device=") + d.info.name + "\nplatform=" + d.info.platform + " " + d.platform_version +
+         "\ndriver=" + d.driver_version + "\ndevice_version=" + d.info.version + "\noptions=" + options +
+         "\nsource=" + hash + "\n";
 }
 
-void copy_string(char* dst, size_t size, const std::string& src) {
-  std::snprintf(dst, size, "%s", src.c_str());
+std::string cache_file(const std::string& dir, const std::string& key) {
+  char name[40];
+  std::snprintf(name, sizeof name, "%016llx.clbin", static_cast<unsigned long long>(fnv1a64(key.data(), key.size())));
+  return (fs::path(dir) / name).string();
 }
 
-// A power of two in 2..16 from the device's native double vector width.
-uint32_t cpu_lanes(cl_uint native_width) {
-  uint32_t lanes = 2;
-  while (lanes < 16 && lanes * 2 <= native_width) lanes *= 2;
-  return lanes;
+void put_u64(std::string* out, uint64_t v) { out->append(reinterpret_cast<const char*>(&v), sizeof v); }
+
+bool get_u64(const std::string& in, size_t* pos, uint64_t* v) {
+  if (in.size() - *pos < sizeof *v) return false;
+  std::memcpy(v, in.data() + *pos, sizeof *v);
+  *pos += sizeof *v;
+  return true;
 }
 
-std::vector<DeviceEntry> enumerate() {
-  std::vector<DeviceEntry> out;
-  cl_uint np = 0;
-  if (clGetPlatformIDs(0, nullptr, &np) != CL_SUCCESS || np == 0) return out;
-  std::vector<cl_platform_id> platforms(np);
-  clGetPlatformIDs(np, platforms.data(), nullptr);
-  for (cl_platform_id p : platforms) {
-    cl_uint nd = 0;
-    if (clGetDeviceIDs(p, CL_DEVICE_TYPE_ALL, 0, nullptr, &nd) != CL_SUCCESS || nd == 0) continue;
-    std::vector<cl_device_id> ids(nd);
-    clGetDeviceIDs(p, CL_DEVICE_TYPE_ALL, nd, ids.data(), nullptr);
-    size_t psize = 0;
-    clGetPlatformInfo(p, CL_PLATFORM_NAME, 0, nullptr, &psize);
-    std::string pname(psize, '\0');
-    clGetPlatformInfo(p, CL_PLATFORM_NAME, psize, &pname[0], nullptr);
-    pname.resize(std::strlen(pname.c_str()));
-    for (cl_device_id d : ids) {
-      DeviceEntry e{p, d, {}};
-      e.info.index = static_cast<uint32_t>(out.size());
-      copy_string(e.info.name, sizeof e.info.name, device_string(d, CL_DEVICE_NAME));
-      copy_string(e.info.platform, sizeof e.info.platform, pname);
-      copy_string(e.info.version, sizeof e.info.version, device_string(d, CL_DEVICE_VERSION));
-      e.info.is_gpu = (device_value<cl_device_type>(d, CL_DEVICE_TYPE) & CL_DEVICE_TYPE_GPU) ? 1 : 0;
-      e.info.fp64 = device_string(d, CL_DEVICE_EXTENSIONS).find("cl_khr_fp64") != std::string::npos ? 1 : 0;
-      e.info.compute_units = device_value<cl_uint>(d, CL_DEVICE_MAX_COMPUTE_UNITS);
-      e.info.global_memory = device_value<cl_ulong>(d, CL_DEVICE_GLOBAL_MEM_SIZE);
-      // CPUs (PoCL) want explicit vector lanes, one SIMD register of doubles wide
-      // (8 with AVX-512, 4 with AVX2); GPUs one ray per work-item.
-      e.info.lanes = e.info.is_gpu ? 1 : cpu_lanes(device_value<cl_uint>(d, CL_DEVICE_NATIVE_VECTOR_WIDTH_DOUBLE));
-      out.push_back(e);
+// The binary stored under `key`, or "" if the file is missing or not intact.
+std::string load_binary(const std::string& file, const std::string& key) {
+  struct stat st;
+  if (::stat(file.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return "";
+  std::ifstream in(file, std::ios::binary);
+  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t magic = sizeof kMagic - 1;
+  if (data.compare(0, magic, kMagic) != 0) return "";
+  size_t pos = magic;
+  uint64_t key_size = 0, size = 0, sum = 0;
+  if (!get_u64(data, &pos, &key_size) || key_size != key.size() || data.size() - pos < key_size) return "";
+  if (data.compare(pos, key_size, key) != 0) return "";
+  pos += key_size;
+  if (!get_u64(data, &pos, &size) || size == 0 || data.size() - pos < size) return "";
+  std::string binary = data.substr(pos, size);
+  pos += size;
+  if (!get_u64(data, &pos, &sum) || sum != fnv1a64(binary.data(), binary.size()) || pos != data.size()) return "";
+  return binary;
+}
+
+// Best effort: a cache that cannot be written only costs the next process a build.
+// Written to a temporary name and renamed, so a reader never sees half a file.
+void store_binary(const std::string& dir, const std::string& file, const std::string& key, const std::string& binary) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  static std::atomic<unsigned> counter{0};
+  const std::string tmp = file + ".tmp" + std::to_string(::getpid()) + "." + std::to_string(counter++);
+  std::string data(kMagic);
+  put_u64(&data, key.size());
+  data += key;
+  put_u64(&data, binary.size());
+  data += binary;
+  put_u64(&data, fnv1a64(binary.data(), binary.size()));
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out.write(data.data(), static_cast<std::streamsize>(data.size()));
+    if (!out) {
+      out.close();
+      fs::remove(tmp, ec);
+      return;
     }
   }
-  return out;
+  fs::rename(tmp, file, ec);
+  if (ec) fs::remove(tmp, ec);
 }
 
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
+std::string program_binary(cl_program program) {
+  size_t size = 0;
+  if (clGetProgramInfo(program, CL_PROGRAM_BINARY_SIZES, sizeof size, &size, nullptr) != CL_SUCCESS || size == 0)
+    return "";
+  std::string binary(size, '\0');
+  unsigned char* ptr = reinterpret_cast<unsigned char*>(&binary[0]);
+  if (clGetProgramInfo(program, CL_PROGRAM_BINARIES, sizeof ptr, &ptr, nullptr) != CL_SUCCESS) return "";
+  return binary;
 }
 
-std::string device_list() {
-  std::string s;
-  for (const DeviceEntry& e : devices())
-    s += "\n  " + std::to_string(e.info.index) + ": " + e.info.name + " (" + e.info.platform + ")";
-  return s.empty() ? " none (is an OpenCL ICD such as pocl-opencl-icd installed?)" : s;
+// A program from a cached binary, or an empty handle if the driver refuses it.
+ClProgram program_from_binary(cl_context context, cl_device_id device, const std::string& binary,
+                              const std::string& options) {
+  const unsigned char* ptr = reinterpret_cast<const unsigned char*>(binary.data());
+  const size_t size = binary.size();
+  cl_int status = CL_SUCCESS, err = CL_SUCCESS;
+  ClProgram program(clCreateProgramWithBinary(context, 1, &device, &size, &ptr, &status, &err));
+  if (err != CL_SUCCESS || status != CL_SUCCESS) return ClProgram();
+  if (clBuildProgram(program.get(), 1, &device, options.c_str(), nullptr, nullptr) != CL_SUCCESS) return ClProgram();
+  return program;
 }
 
 }  // namespace
 
-const std::vector<DeviceEntry>& devices() {
-  static const std::vector<DeviceEntry> all = enumerate();
-  return all;
+namespace testing {
+void set_extra_build_options(const std::string& options) {
+  std::lock_guard<std::mutex> lock(g_extra_mutex);
+  g_extra_options = options;
 }
+}  // namespace testing
 
-uint32_t resolve_device(int32_t requested) {
-  const auto& all = devices();
-  if (all.empty())
-    fail(ARCUS_ERROR_DEVICE_NOT_FOUND, "no OpenCL device found (is an OpenCL ICD such as pocl-opencl-icd installed?)");
-  if (requested >= 0) {
-    if (static_cast<size_t>(requested) >= all.size())
-      fail(ARCUS_ERROR_DEVICE_NOT_FOUND, "device: index " + std::to_string(requested) + " does not exist; devices:" +
-                                             device_list());
-    return static_cast<uint32_t>(requested);
-  }
-  if (requested != ARCUS_DEVICE_DEFAULT)
-    fail(ARCUS_ERROR_DEVICE_NOT_FOUND, "device: " + std::to_string(requested) +
-                                           " is neither an index nor ARCUS_DEVICE_DEFAULT (-1)");
-  if (const char* env = std::getenv("ARCUS_DEVICE"); env && *env) {
-    std::string want(env);
-    char* end = nullptr;
-    long index = std::strtol(env, &end, 10);
-    if (end && *end == '\0') {
-      if (index < 0 || static_cast<size_t>(index) >= all.size())
-        fail(ARCUS_ERROR_DEVICE_NOT_FOUND,
-             "ARCUS_DEVICE=" + want + ": no device with that index; devices:" + device_list());
-      return static_cast<uint32_t>(index);
-    }
-    for (const DeviceEntry& e : all)
-      if (lower(std::string(e.info.name) + " " + e.info.platform).find(lower(want)) != std::string::npos)
-        return e.info.index;
-    fail(ARCUS_ERROR_DEVICE_NOT_FOUND, "ARCUS_DEVICE=" + want + ": no device name matches; devices:" + device_list());
-  }
-  for (const DeviceEntry& e : all)
-    if (e.info.is_gpu) return e.info.index;
-  for (const DeviceEntry& e : all)
-    if (device_value<cl_device_type>(e.device, CL_DEVICE_TYPE) & CL_DEVICE_TYPE_CPU) return e.info.index;
-  return 0;
+std::string program_cache_dir() {
+  const char* env = std::getenv("ARCUS_CACHE_DIR");
+  if (env && *env) return std::string(env) == "off" ? "" : env;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return (fs::path(xdg) / "arcus").string();
+  if (const char* home = std::getenv("HOME"); home && *home) return (fs::path(home) / ".cache" / "arcus").string();
+  return "";
 }
 
 DeviceRuntime::DeviceRuntime(uint32_t device_index) : entry_(devices().at(device_index)) {
@@ -135,33 +163,58 @@ DeviceRuntime::DeviceRuntime(uint32_t device_index) : entry_(devices().at(device
   check_cl(err, "clCreateContext");
 }
 
-DeviceRuntime::~DeviceRuntime() = default;
+std::string DeviceRuntime::build_options(arcus_features features, Layout layout) const {
+  std::string options = "-cl-std=CL1.2 -D ARCUS_LANES=" + std::to_string(layout.lanes) +
+                        " -D ARCUS_GROUPS=" + std::to_string(layout.groups);
+  const std::string f = feature_options(features);
+  if (!f.empty()) options += " " + f;
+  const std::string extra = extra_options();
+  if (!extra.empty()) options += " " + extra;
+  return options;
+}
 
-BuiltProgram DeviceRuntime::program(const std::string& options) {
+BuiltProgram DeviceRuntime::program(const KernelSource& source, arcus_features features, Layout layout) {
+  const std::string extra = extra_options();
+  const Key key{source.name, features, layout.lanes, layout.groups, extra};
   std::lock_guard<std::mutex> lock(mutex_);
-  auto it = programs_.find(options);
-  if (it != programs_.end()) return {it->second.get(), 0.0, true};
+  auto it = programs_.find(key);
+  if (it != programs_.end()) return {it->second.get(), 0.0, ARCUS_PROGRAM_MEMORY_CACHE};
 
-  auto start = std::chrono::steady_clock::now();
-  const std::string& source = advance_program_source();
-  const char* text = source.c_str();
-  size_t length = source.size();
+  const auto start = std::chrono::steady_clock::now();
+  const std::string options = build_options(features, layout);
+  const std::string text = kernel_text(source);
+  const std::string dir = program_cache_dir();
+  const std::string disk_key = cache_key(entry_, options, text);
+  const std::string file = dir.empty() ? "" : cache_file(dir, disk_key);
+
+  if (!file.empty()) {
+    const std::string binary = load_binary(file, disk_key);
+    if (!binary.empty()) {
+      ClProgram p = program_from_binary(context_.get(), entry_.device, binary, options);
+      if (p) {
+        cl_program raw = p.get();
+        programs_.emplace(key, std::move(p));
+        return {raw, seconds_since(start), ARCUS_PROGRAM_DISK_CACHE};
+      }
+    }
+  }
+
+  const char* ptr = text.c_str();
+  const size_t length = text.size();
   cl_int err = CL_SUCCESS;
-  ClProgram program(clCreateProgramWithSource(context_.get(), 1, &text, &length, &err));
+  ClProgram program(clCreateProgramWithSource(context_.get(), 1, &ptr, &length, &err));
   check_cl(err, "clCreateProgramWithSource");
   err = clBuildProgram(program.get(), 1, &entry_.device, options.c_str(), nullptr, nullptr);
-  if (err != CL_SUCCESS) {
-    size_t size = 0;
-    clGetProgramBuildInfo(program.get(), entry_.device, CL_PROGRAM_BUILD_LOG, 0, nullptr, &size);
-    std::string log(size, '\0');
-    clGetProgramBuildInfo(program.get(), entry_.device, CL_PROGRAM_BUILD_LOG, size, &log[0], nullptr);
-    fail(ARCUS_ERROR_KERNEL_BUILD, "kernel build failed (" + cl_error_name(err) + ") with options '" + options +
-                                       "':\n" + log);
+  if (err != CL_SUCCESS)
+    fail(ARCUS_ERROR_KERNEL_BUILD, "building kernel " + std::string(source.name) + " failed (" + cl_error_name(err) +
+                                       ") with options '" + options + "':\n" + build_log(program.get(), entry_.device));
+  if (!file.empty()) {
+    const std::string binary = program_binary(program.get());
+    if (!binary.empty()) store_binary(dir, file, disk_key, binary);
   }
-  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  cl_program p = program.get();
-  programs_.emplace(options, std::move(program));
-  return {p, seconds, false};
+  cl_program raw = program.get();
+  programs_.emplace(key, std::move(program));
+  return {raw, seconds_since(start), ARCUS_PROGRAM_BUILT};
 }
 
 std::shared_ptr<DeviceRuntime> runtime_for(uint32_t device_index) {

@@ -1,12 +1,19 @@
 #include "curved/fields.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <string>
 
 #include "core/error.h"
+#include "core/format.h"
 
-namespace arcus {
+namespace arcus::curved {
 namespace {
 
 // US Standard Atmosphere 1976 (NOAA-S/T 76-1562), table 4: base geopotential heights
@@ -14,8 +21,9 @@ namespace {
 constexpr double kStdBase[] = {0.0, 11000.0, 20000.0, 32000.0, 47000.0, 51000.0, 71000.0, 84852.0};
 constexpr double kStdLapse[] = {-0.0065, 0.0, 0.001, 0.0028, 0.0, -0.0028, -0.002, 0.0};
 constexpr int kStdLayers = 8;
-constexpr double kTopGeometric = 84000.0;  // inversions must end below the table's top
+constexpr double kTopGeometric = 84000.0;          // inversions must end below the table's top
 constexpr double kGeopotentialRadius = 6356766.0;  // r0 of the 1976 standard's H = r0·h/(r0 + h)
+constexpr double kMinTemperature = 50.0;           // K: colder air is no air for this model
 
 double geopotential(double h, double r0) { return r0 * h / (r0 + h); }
 
@@ -37,7 +45,7 @@ struct Layer {
 };
 
 // Temperature offset of the inversion layers: delta_t below the base, fading
-// linearly to 0 at the top (arcus.h, arcus_inversion).
+// linearly to 0 at the top (arcus_curved.h, arcus_inversion).
 double inversion_offset(double H, const std::vector<Layer>& layers) {
   double d = 0;
   for (const Layer& l : layers) {
@@ -51,23 +59,94 @@ double inversion_offset(double H, const std::vector<Layer>& layers) {
 
 bool finite_positive(double v) { return std::isfinite(v) && v > 0; }
 
-}  // namespace
-
-double ciddor_standard_refractivity(double wavelength_nm) {
-  const double sigma2 = std::pow(1000.0 / wavelength_nm, 2);  // (1/µm)²
-  return 1e-8 * (5792105.0 / (238.0185 - sigma2) + 167917.0 / (57.362 - sigma2));
+void require_finite(double v, const char* name) {
+  require(std::isfinite(v), std::string(name) + " = " + number(v) + " is not finite");
 }
 
-void build_atmosphere(const arcus_atmosphere_desc& desc, arcus_field_desc_d* field, std::vector<double>* segments) {
+void require_finite3(const double* v, const char* name) {
+  require_pointer(v, name);
+  for (int a = 0; a < 3; ++a)
+    require(std::isfinite(v[a]), std::string(name) + "[" + std::to_string(a) + "] = " + number(v[a]) + " is not finite");
+}
+
+// The kernels use 1/R²: it must be finite and non-zero, which R alone does not ensure
+// (R = 1e-200 squares to 0, R = 1e200 to infinity).
+double inverse_square_radius(double radius) {
+  require(finite_positive(radius), "radius = " + number(radius) + " must be positive and finite");
+  const double inv = 1.0 / (radius * radius);
+  require(std::isfinite(inv) && inv > 0,
+          "radius = " + number(radius) + " is too " + (radius < 1 ? "small" : "large") +
+              ": 1/radius² is not a finite non-zero number");
+  return inv;
+}
+
+FieldBuild with_kind(int32_t kind) {
+  FieldBuild b;
+  b.desc.kind = kind;
+  return b;
+}
+
+}  // namespace
+
+FieldBuild constant(double n) {
+  require(finite_positive(n), "n = " + number(n) + " must be positive and finite");
+  FieldBuild b = with_kind(ARCUS_KIND_CONSTANT);
+  b.desc.n0 = n;
+  return b;
+}
+
+FieldBuild linear(double n0, const double* gradient) {
+  require_finite(n0, "n0");
+  require_finite3(gradient, "gradient");
+  FieldBuild b = with_kind(ARCUS_KIND_LINEAR);
+  b.desc.n0 = n0;
+  std::copy(gradient, gradient + 3, b.desc.vec);
+  return b;
+}
+
+FieldBuild linear_n2(double a, const double* k) {
+  require_finite(a, "a");
+  require_finite3(k, "k");
+  FieldBuild b = with_kind(ARCUS_KIND_LINEAR_N2);
+  b.desc.n0 = a;
+  std::copy(k, k + 3, b.desc.vec);
+  return b;
+}
+
+FieldBuild luneburg(const double* center, double radius) {
+  require_finite3(center, "center");
+  FieldBuild b = with_kind(ARCUS_KIND_LUNEBURG);
+  b.desc.inv_radius2 = inverse_square_radius(radius);
+  std::copy(center, center + 3, b.desc.vec);
+  return b;
+}
+
+FieldBuild fisheye(const double* center, double radius, double n0) {
+  require_finite3(center, "center");
+  require(finite_positive(n0), "n0 = " + number(n0) + " must be positive and finite");
+  FieldBuild b = with_kind(ARCUS_KIND_FISHEYE);
+  b.desc.n0 = n0;
+  b.desc.inv_radius2 = inverse_square_radius(radius);
+  std::copy(center, center + 3, b.desc.vec);
+  return b;
+}
+
+FieldBuild atmosphere(const arcus_atmosphere_desc& desc) {
   require(desc.spherical == 0 || desc.spherical == 1, "atmosphere: spherical must be 0 or 1");
-  require(std::isfinite(desc.wavelength) && desc.wavelength >= 300.0 && desc.wavelength <= 1690.0,
-          "atmosphere: wavelength " + std::to_string(desc.wavelength) +
-              " nm is outside Ciddor's range of 300..1690 nm");
+  require(std::isfinite(desc.wavelength) && desc.wavelength >= ARCUS_MIN_WAVELENGTH &&
+              desc.wavelength <= ARCUS_MAX_WAVELENGTH,
+          "atmosphere: wavelength " + number(desc.wavelength) + " nm is outside Ciddor's range of 300..1690 nm");
   require(std::isfinite(desc.sea_level_temperature) && desc.sea_level_temperature > 150.0 &&
               desc.sea_level_temperature < 400.0,
-          "atmosphere: sea_level_temperature must be a temperature in kelvin between 150 and 400");
-  require(finite_positive(desc.sea_level_pressure), "atmosphere: sea_level_pressure must be positive (Pa)");
+          "atmosphere: sea_level_temperature = " + number(desc.sea_level_temperature) +
+              " must be a temperature in kelvin between 150 and 400");
+  require(finite_positive(desc.sea_level_pressure), "atmosphere: sea_level_pressure = " +
+                                                        number(desc.sea_level_pressure) + " must be positive (Pa)");
   require(desc.inversion_count == 0 || desc.inversions, "atmosphere: inversions is NULL but inversion_count > 0");
+  // The kernels scan every layer at every evaluation (a few are the rule in nature).
+  require(desc.inversion_count <= ARCUS_MAX_INVERSIONS,
+          "atmosphere: inversion_count = " + std::to_string(desc.inversion_count) + " exceeds " +
+              std::to_string(ARCUS_MAX_INVERSIONS) + " layers");
 
   const double R = kGeopotentialRadius;
   std::vector<Layer> layers;
@@ -78,8 +157,9 @@ void build_atmosphere(const arcus_atmosphere_desc& desc, arcus_field_desc_d* fie
     require(std::isfinite(inv.base) && std::isfinite(inv.top) && std::isfinite(inv.delta_t),
             which + " has a non-finite value");
     require(inv.base >= 0 && inv.top > inv.base && inv.top <= kTopGeometric,
-            which + ": need 0 <= base < top <= 84000 m");
-    require(std::fabs(inv.delta_t) <= 100.0, which + ": |delta_t| must be at most 100 K");
+            which + ": need 0 <= base < top <= 84000 m (base " + number(inv.base) + ", top " + number(inv.top) + ")");
+    require(std::fabs(inv.delta_t) <= 100.0, which + ": |delta_t| = " + number(std::fabs(inv.delta_t)) +
+                                                 " K exceeds 100 K");
     layers.push_back({geopotential(inv.base, R), geopotential(inv.top, R), inv.delta_t});
     breaks.push_back(layers.back().base_H);
     breaks.push_back(layers.back().top_H);
@@ -92,15 +172,23 @@ void build_atmosphere(const arcus_atmosphere_desc& desc, arcus_field_desc_d* fie
   };
   // T is linear between consecutive breaks, so each piece is one segment; pressure
   // follows from the hydrostatic equation in closed form, as in atmosphere_eval.
-  segments->clear();
+  FieldBuild b = with_kind(ARCUS_KIND_ATMOSPHERE);
   double p = desc.sea_level_pressure;
   for (size_t k = 0; k < breaks.size(); ++k) {
     double H0 = breaks[k], T0 = temperature(H0);
-    require(T0 > 50.0, "atmosphere: the inversions make the temperature at geopotential height " +
-                           std::to_string(H0) + " m fall to " + std::to_string(T0) + " K");
+    if (T0 <= kMinTemperature) {
+      const std::string where = "atmosphere: the temperature falls to " + number(T0) + " K at geopotential height " +
+                                number(H0) + " m";
+      fail(ARCUS_ERROR_INVALID_ARGUMENT,
+           layers.empty() || standard_temperature(H0, desc.sea_level_temperature) <= kMinTemperature
+               ? where + ": the standard lapse rates from a sea-level temperature of " +
+                     number(desc.sea_level_temperature) + " K reach below " + number(kMinTemperature) +
+                     " K there; raise sea_level_temperature"
+               : where + " because of the inversions' delta_t");
+    }
     double lapse = 0.0;  // above the last break: isothermal, as the 1976 table
     if (k + 1 < breaks.size()) lapse = (temperature(breaks[k + 1]) - T0) / (breaks[k + 1] - H0);
-    segments->insert(segments->end(), {H0, T0, lapse, p});
+    b.data.insert(b.data.end(), {H0, T0, lapse, p});
     if (k + 1 < breaks.size()) {
       double dH = breaks[k + 1] - H0, x = lapse * dH / T0;
       double integral = std::fabs(x) < 1e-12 ? dH / T0 : std::log1p(x) / lapse;
@@ -108,48 +196,107 @@ void build_atmosphere(const arcus_atmosphere_desc& desc, arcus_field_desc_d* fie
     }
   }
 
-  *field = arcus_field_desc_d{};
-  field->kind = ARCUS_KIND_ATMOSPHERE;
-  field->spherical = desc.spherical;
-  field->earth_radius = ARCUS_EARTH_RADIUS;
-  field->geopotential_radius = kGeopotentialRadius;
-  field->count = static_cast<int32_t>(breaks.size());
-  // n − 1 = K·p/T: Ciddor's standard refractivity scaled by density (ideal gas; the
-  // compressibility of air changes n − 1 by < 0.05 %).
-  field->refractivity = ciddor_standard_refractivity(desc.wavelength) * 288.15 / 101325.0;
+  b.desc.spherical = desc.spherical;
+  b.desc.earth_radius = ARCUS_EARTH_RADIUS;
+  b.desc.geopotential_radius = kGeopotentialRadius;
+  b.desc.count = static_cast<int32_t>(breaks.size());
+  b.desc.refractivity = ciddor_refractivity(desc.wavelength);
+  return b;
 }
 
-size_t grid_value_count(const uint32_t dims[3], const double origin[3], const double spacing[3]) {
+size_t grid_value_count(const uint32_t* dims, const double* origin, const double* spacing) {
   require_pointer(dims, "dims");
   require_pointer(origin, "origin");
   require_pointer(spacing, "spacing");
   size_t count = 1;
   for (int a = 0; a < 3; ++a) {
-    require(dims[a] >= 2 && dims[a] <= (1u << 16), "grid: dims[" + std::to_string(a) + "] = " +
-                                                        std::to_string(dims[a]) + " must be in 2..65536");
-    require(std::isfinite(origin[a]), "grid: origin[" + std::to_string(a) + "] is not finite");
-    require(finite_positive(spacing[a]), "grid: spacing[" + std::to_string(a) + "] must be positive");
+    const std::string axis = "[" + std::to_string(a) + "]";
+    require(dims[a] >= 2 && dims[a] <= (1u << 16),
+            "grid: dims" + axis + " = " + std::to_string(dims[a]) + " must be in 2..65536");
+    require(std::isfinite(origin[a]), "grid: origin" + axis + " = " + number(origin[a]) + " is not finite");
+    require(finite_positive(spacing[a]), "grid: spacing" + axis + " = " + number(spacing[a]) + " must be positive");
+    // What the kernels derive: 1/spacing, and the far corner of the grid.
+    require(std::isfinite(1.0 / spacing[a]),
+            "grid: spacing" + axis + " = " + number(spacing[a]) + " is too small: 1/spacing is not finite");
+    require(std::isfinite(origin[a] + (dims[a] - 1) * spacing[a]),
+            "grid: spacing" + axis + " = " + number(spacing[a]) + " is too large: the grid's extent is not finite");
     count *= dims[a];
   }
   require(count <= (size_t(1) << 31), "grid: more than 2^31 values");
   return count;
 }
 
-void build_grid(const double* values, const uint32_t dims[3], const double origin[3], const double spacing[3],
-                arcus_field_desc_d* field, std::vector<double>* data) {
+FieldBuild grid(std::vector<double> values, const uint32_t* dims, const double* origin, const double* spacing) {
   const size_t count = grid_value_count(dims, origin, spacing);
-  require_pointer(values, "values");
-  for (size_t i = 0; i < count; ++i)
-    require(finite_positive(values[i]), "grid: values[" + std::to_string(i) + "] = " + std::to_string(values[i]) +
-                                            " is not a positive finite index of refraction");
-  *field = arcus_field_desc_d{};
-  field->kind = ARCUS_KIND_GRID;
+  require(values.size() == count, "grid: " + std::to_string(values.size()) + " values for " +
+                                      std::to_string(count) + " grid points");
+  // One pass without building messages (a 256³ grid has 16.7 million values).
+  const auto bad = std::find_if(values.begin(), values.end(), [](double v) { return !finite_positive(v); });
+  if (bad != values.end())
+    fail(ARCUS_ERROR_INVALID_ARGUMENT, "grid: values[" + std::to_string(bad - values.begin()) + "] = " + number(*bad) +
+                                           " is not a positive finite index of refraction");
+  FieldBuild b = with_kind(ARCUS_KIND_GRID);
   for (int a = 0; a < 3; ++a) {
-    field->dims[a] = static_cast<int32_t>(dims[a]);
-    field->origin[a] = origin[a];
-    field->inv_spacing[a] = 1.0 / spacing[a];
+    b.desc.dims[a] = static_cast<int32_t>(dims[a]);
+    b.desc.origin[a] = origin[a];
+    b.desc.inv_spacing[a] = 1.0 / spacing[a];
   }
-  data->assign(values, values + count);
+  b.data = std::move(values);
+  return b;
 }
 
-}  // namespace arcus
+std::vector<double> read_grid_file(const char* path, int32_t type, size_t count) {
+  require_pointer(path, "path");
+  require(type == ARCUS_FLOAT32 || type == ARCUS_FLOAT64,
+          "type = " + std::to_string(type) + " is not ARCUS_FLOAT32 (0) or ARCUS_FLOAT64 (1)");
+  const std::string name = std::string("path: '") + path + "'";
+  // O_NONBLOCK: opening a FIFO must not wait for a writer; fstat then refuses it.
+  const int fd = ::open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) fail(ARCUS_ERROR_IO, name + ": cannot open: " + std::strerror(errno));
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st;
+  if (::fstat(fd, &st) != 0) fail(ARCUS_ERROR_IO, name + ": cannot stat: " + std::strerror(errno));
+  if (S_ISDIR(st.st_mode)) fail(ARCUS_ERROR_IO, name + " is a directory, not a grid file");
+  if (!S_ISREG(st.st_mode))
+    fail(ARCUS_ERROR_IO, name + " is not a regular file (" +
+                             (S_ISFIFO(st.st_mode) ? "a FIFO" : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "a device"
+                                                                                                            : "special") +
+                             ")");
+  const size_t width = type == ARCUS_FLOAT32 ? 4 : 8;
+  const size_t size = static_cast<size_t>(st.st_size);
+  if (size != count * width)
+    fail(ARCUS_ERROR_IO, name + " holds " + std::to_string(size) + " bytes, but " + std::to_string(count) +
+                             " values of " + std::to_string(width) + " bytes need " + std::to_string(count * width));
+  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+  std::vector<double> values(count);
+  // Read straight into the values (float32: through a small buffer), so the file is
+  // never held twice.
+  auto read_all = [&](char* dst, size_t bytes) {
+    while (bytes) {
+      const ssize_t got = ::read(fd, dst, bytes);
+      if (got < 0 && errno == EINTR) continue;
+      if (got <= 0) fail(ARCUS_ERROR_IO, name + ": reading failed" + (got < 0 ? std::string(": ") + std::strerror(errno) : " (file shrank)"));
+      dst += got;
+      bytes -= static_cast<size_t>(got);
+    }
+  };
+  if (type == ARCUS_FLOAT64) {
+    read_all(reinterpret_cast<char*>(values.data()), count * 8);
+  } else {
+    std::vector<float> chunk(size_t(1) << 16);
+    for (size_t done = 0; done < count;) {
+      const size_t n = std::min(chunk.size(), count - done);
+      read_all(reinterpret_cast<char*>(chunk.data()), n * 4);
+      std::copy(chunk.begin(), chunk.begin() + static_cast<std::ptrdiff_t>(n), values.begin() + static_cast<std::ptrdiff_t>(done));
+      done += n;
+    }
+  }
+  return values;
+}
+
+bool dispersive(const arcus_field_desc_d& desc) { return desc.kind == ARCUS_KIND_ATMOSPHERE; }
+
+}  // namespace arcus::curved

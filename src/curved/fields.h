@@ -1,27 +1,56 @@
-// Building index-of-refraction fields on the host (validation, atmosphere tables).
+// Index-of-refraction fields on the host: the object behind arcus_field_t, and the
+// building and checking of field descriptions (atmosphere tables, grids).
 #pragma once
 
+#include <memory>
+#include <string>
 #include <vector>
 
-#include "arcus/arcus.h"
-#include "field.h"
+#include "arcus/arcus_curved.h"
+#include "core/buffer.h"
+#include "core/handle.h"
+#include "curved/field.h"  // kernels/curved/field.h: the description shared with the kernels
 
-namespace arcus {
+struct arcus_field_s : arcus::Handle {
+  explicit arcus_field_s(arcus_context_t* ctx) : Handle(arcus::HandleType::Field, ctx) {}
+  arcus_field_desc_d desc{};  // kind, parameters (double)
+  std::vector<double> data;   // atmosphere segments or grid values
+  // The data on the device, per precision (double, float), uploaded on first use and
+  // kept for every later job.
+  std::shared_ptr<arcus::DeviceBuffer> device_data[2];
+};
 
-// n − 1 of standard dry air (15 °C, 101 325 Pa, 450 ppm CO2) at a vacuum wavelength in
-// nm: Ciddor (1996), Appl. Opt. 35, 1566, eq. 1.  Valid 300–1690 nm.
-double ciddor_standard_refractivity(double wavelength_nm);
+namespace arcus::curved {
 
-// The atmosphere's field description and segment table (field.h's layout): the US
-// Standard Atmosphere 1976 temperature profile, shifted to the given sea-level
-// temperature, plus the inversion layers (thesis §3.1.1).  Throws on bad input.
-void build_atmosphere(const arcus_atmosphere_desc& desc, arcus_field_desc_d* field, std::vector<double>* segments);
+// A description and its data, built and checked, before it becomes a field.
+struct FieldBuild {
+  arcus_field_desc_d desc{};
+  std::vector<double> data;
+};
 
-// Checks a grid's dims (each 2..65536), origin and spacing; returns the value count.
-size_t grid_value_count(const uint32_t dims[3], const double origin[3], const double spacing[3]);
+FieldBuild constant(double n);
+FieldBuild linear(double n0, const double* gradient);
+FieldBuild linear_n2(double a, const double* k);
+FieldBuild luneburg(const double* center, double radius);
+FieldBuild fisheye(const double* center, double radius, double n0);
 
-// Checks a grid's description and values (finite, positive) and fills `field`.
-void build_grid(const double* values, const uint32_t dims[3], const double origin[3], const double spacing[3],
-                arcus_field_desc_d* field, std::vector<double>* data);
+// The US Standard Atmosphere 1976 temperature profile shifted to the sea-level
+// temperature, plus the inversion layers (thesis §3.1.1), as segments (field.h).
+FieldBuild atmosphere(const arcus_atmosphere_desc& desc);
 
-}  // namespace arcus
+// Checks a grid's dims (each 2..65536), origin and spacing, and what the kernels derive
+// from them; returns the value count.
+size_t grid_value_count(const uint32_t* dims, const double* origin, const double* spacing);
+
+// A grid from its values (moved in: a grid may be large), each checked to be a
+// positive finite n.
+FieldBuild grid(std::vector<double> values, const uint32_t* dims, const double* origin, const double* spacing);
+
+// The values of a raw little-endian grid file (type: arcus_scalar_type), read without
+// any arcus lock held.  Not a regular file, or the wrong size: ARCUS_ERROR_IO.
+std::vector<double> read_grid_file(const char* path, int32_t type, size_t count);
+
+// Whether n depends on the wavelength (per-ray wavelengths apply).
+bool dispersive(const arcus_field_desc_d& desc);
+
+}  // namespace arcus::curved

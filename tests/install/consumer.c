@@ -29,7 +29,7 @@ int main(void) {
   double origins[4 * 3] = {0}, directions[4 * 3] = {0};
   for (int i = 0; i < 4; ++i) directions[3 * i] = 1.0, directions[3 * i + 1] = 0.1 * i;
   arcus_job_t* job = NULL;
-  if (check(arcus_advance(ctx, field, &params, 4, origins, directions, &job), "arcus_advance", ctx)) return 1;
+  if (check(arcus_advance(ctx, field, &params, 4, origins, directions, NULL, &job), "arcus_advance", ctx)) return 1;
   double end[4 * 3];
   int32_t status[4];
   double lengths[4];

@@ -55,7 +55,7 @@ def test_dp45_catenary(ctx):
     result = ctx.advance(LINEAR, origins, directions, method="dp45", rtol=rtol, atol=atol, length=length)
     assert np.all(result.status == arcus.RAY_DONE)
     assert np.all(result.lengths == length)
-    assert {"DP45", "ANALYTIC_FIELD"} <= result.features and "FLOAT" not in result.features
+    assert {"DP45", "FIELD_LINEAR"} <= result.features and "FLOAT" not in result.features
     position_error, direction_error = catenary_error(result, origins, directions, length)
     # |r| <= 12 and |v| = n <= 2.2 over these paths.
     assert position_error < dp45_bound(result.steps.max(), rtol, atol, 12.0)
@@ -223,7 +223,7 @@ def test_horizontal_ray_in_flat_atmosphere_follows_local_catenary(ctx):
     n, gradient = air.evaluate(ctx, [0.0, height, 0.0])
     g = gradient[0, 1]
     result = ctx.advance(air, [0.0, height, 0.0], [1.0, 0.0, 0.0], length=length, rtol=1e-12, atol=1e-12)
-    assert "ATMOSPHERE" in result.features
+    assert "FIELD_ATMOSPHERE" in result.features
     end, _ = catenary(n[0] - g * height, g, [[0.0, height, 0.0]], [[1.0, 0.0, 0.0]], length)
     drop = height - result.positions[0, 1]
     assert drop == pytest.approx(-g / n[0] * length**2 / 2, rel=1e-3)  # ~5 cm

@@ -20,7 +20,8 @@ from arcus import _lib
 
 @pytest.fixture(scope="module")
 def header(repo):
-    return (repo / "include" / "arcus" / "arcus.h").read_text()
+    """Every public header, concatenated (arcus.h includes one per topic)."""
+    return "\n".join(p.read_text() for p in sorted((repo / "include" / "arcus").glob("*.h")))
 
 
 def enum_values(header, enum_name, prefix):
@@ -36,7 +37,8 @@ def test_library_loaded_and_version_matches_header(header):
 
 
 def test_feature_bits_match_header(header):
-    bits = {name: 1 << int(shift) for name, shift in re.findall(r"#define ARCUS_FEATURE_(\w+) \(1u << (\d+)\)", header)}
+    pattern = r"#define ARCUS_FEATURE_(\w+) \(UINT64_C\(1\) << (\d+)\)"
+    bits = {name: 1 << int(shift) for name, shift in re.findall(pattern, header)}
     assert bits == arcus.FEATURES
 
 
@@ -67,7 +69,7 @@ def test_enums_match_header(header):
 
 def test_status_names_come_from_library(header):
     statuses = enum_values(header, "arcus_status", "ARCUS_")
-    assert len(statuses) == 10
+    assert len(statuses) == 11
     for name, code in statuses.items():
         assert _lib.status_name(code) == "ARCUS_" + name
 
@@ -117,9 +119,11 @@ int main(void) {
   F(arcus_advance_params, min_step) F(arcus_advance_params, max_step) F(arcus_advance_params, max_rejections)
   F(arcus_advance_params, max_steps) F(arcus_advance_params, use_box) F(arcus_advance_params, box_min)
   F(arcus_advance_params, box_max) F(arcus_advance_params, record_path) F(arcus_advance_params, path_capacity)
+  F(arcus_advance_params, progress) F(arcus_advance_params, progress_user)
   printf("arcus_job_stats %zu\n", sizeof(arcus_job_stats));
   F(arcus_job_stats, build_seconds) F(arcus_job_stats, kernel_seconds) F(arcus_job_stats, total_seconds)
-  F(arcus_job_stats, cache_hit) F(arcus_job_stats, lanes) F(arcus_job_stats, groups)
+  F(arcus_job_stats, program_origin) F(arcus_job_stats, lanes) F(arcus_job_stats, groups)
+  F(arcus_job_stats, launches)
   return 0;
 }
 """

@@ -21,19 +21,19 @@ from . import media
 from ._constants import (
     DEVICE_DEFAULT,
     EARTH_RADIUS,
-    FEATURES,
     FIELD_KINDS,
     METHODS,
     PRECISIONS,
     RAY_DONE,
+    RAY_CANCELLED,
     RAY_FAILED,
     RAY_INVALID_INPUT,
     RAY_LEFT_BOX,
     RAY_STATUS_NAMES,
     RAY_STEP_LIMIT,
-    feature_names,
 )
 from ._errors import ArgumentError, Error, LibraryNotFoundError
+from ._lib import FEATURES, feature_names
 from ._lib import check as _check
 from ._lib import lib as _libarcus
 from ._lib import library_path  # the path (or soname) libarcus was loaded from
@@ -62,6 +62,7 @@ __all__ = [
     "LibraryNotFoundError",
     "METHODS",
     "PRECISIONS",
+    "RAY_CANCELLED",
     "RAY_DONE",
     "RAY_FAILED",
     "RAY_INVALID_INPUT",

@@ -1,7 +1,8 @@
 """Constants mirrored from include/arcus/arcus.h.
 
 The C header is the contract; these values must match it exactly (the tests compare
-the feature names with arcus_features_to_string and the defaults with the library).
+the defaults with the library).  Kernel feature names come from the library itself
+(arcus.FEATURES), which holds the one table of them.
 """
 
 #: Earth's radius in metres used by the spherical atmosphere (ARCUS_EARTH_RADIUS).
@@ -20,8 +21,11 @@ RAY_LEFT_BOX = 1
 RAY_STEP_LIMIT = 2
 #: DP45 could not meet the tolerance, or the state became non-finite.
 RAY_FAILED = 3
-#: NaN/Inf origin or direction, or a zero direction; the ray was not traced.
+#: NaN/Inf origin or direction, a zero direction, or a wavelength outside 300..1690 nm;
+#: the ray was not traced.
 RAY_INVALID_INPUT = 4
+#: The job was cancelled (the progress callback asked so) before the ray finished.
+RAY_CANCELLED = 5
 
 #: Per-ray status code -> name ("DONE", "LEFT_BOX", ...).
 RAY_STATUS_NAMES = {
@@ -30,6 +34,7 @@ RAY_STATUS_NAMES = {
     RAY_STEP_LIMIT: "STEP_LIMIT",
     RAY_FAILED: "FAILED",
     RAY_INVALID_INPUT: "INVALID_INPUT",
+    RAY_CANCELLED: "CANCELLED",
 }
 
 #: Integration method name -> arcus_method value.  ``"dp45"`` is adaptive
@@ -38,21 +43,6 @@ METHODS = {"euler": 0, "rk2": 1, "rk4": 2, "dp45": 3}
 
 #: Precision name -> arcus_precision value.
 PRECISIONS = {"double": 0, "float": 1}
-
-#: Kernel feature name -> ARCUS_FEATURE_* bit.
-FEATURES = {
-    "STRAIGHT": 1 << 0,
-    "EULER": 1 << 1,
-    "RK2": 1 << 2,
-    "RK4": 1 << 3,
-    "DP45": 1 << 4,
-    "ANALYTIC_FIELD": 1 << 5,
-    "ATMOSPHERE": 1 << 6,
-    "GRID": 1 << 7,
-    "BOX": 1 << 8,
-    "RECORD_PATH": 1 << 9,
-    "FLOAT": 1 << 10,
-}
 
 #: Field kind value (arcus_field_kind) -> name.
 FIELD_KINDS = {
@@ -70,8 +60,5 @@ FIELD_KINDS = {
 SUCCESS = 0
 ERROR_INVALID_RAYS = 8
 ERROR_PATH_OVERFLOW = 9
+ERROR_CANCELLED = 10
 
-
-def feature_names(bits):
-    """The names of the ARCUS_FEATURE_* bits set in ``bits``, as a frozenset."""
-    return frozenset(name for name, bit in FEATURES.items() if bits & bit)

@@ -75,6 +75,8 @@ class AdvanceParamsStruct(ctypes.Structure):
         ("box_max", c_double * 3),
         ("record_path", c_int32),
         ("path_capacity", c_uint32),
+        ("progress", c_void_p),  # arcus_progress_callback (set as a PROGRESS_CALLBACK)
+        ("progress_user", c_void_p),
     ]
 
 
@@ -85,14 +87,18 @@ class JobStatsStruct(ctypes.Structure):
         ("build_seconds", c_double),
         ("kernel_seconds", c_double),
         ("total_seconds", c_double),
-        ("cache_hit", c_int32),
+        ("program_origin", c_int32),
         ("lanes", c_uint32),
         ("groups", c_uint32),
+        ("launches", c_uint32),
     ]
 
 
 #: void (*arcus_error_callback)(void* user, arcus_status status, const char* message)
 ERROR_CALLBACK = ctypes.CFUNCTYPE(None, c_void_p, c_int, c_char_p)
+
+#: int32_t (*arcus_progress_callback)(void* user, double fraction)
+PROGRESS_CALLBACK = ctypes.CFUNCTYPE(c_int32, c_void_p, c_double)
 
 # ---- prototypes -----------------------------------------------------------------------
 # Handles are opaque, so c_void_p; out-handles are POINTER(c_void_p).
@@ -123,14 +129,17 @@ _PROTOTYPES = {
     "arcus_atmosphere_desc_init": (_status, [POINTER(AtmosphereDescStruct)]),
     "arcus_field_create_atmosphere": (_status, [_handle, POINTER(AtmosphereDescStruct), _out_handle]),
     "arcus_field_create_grid": (_status, [_handle, _dvec, _u32vec, _dvec, _dvec, _out_handle]),
-    "arcus_field_create_grid_from_file": (_status, [_handle, c_char_p, c_int, _u32vec, _dvec, _dvec, _out_handle]),
+    "arcus_field_create_grid_from_file": (_status, [_handle, c_char_p, c_int32, _u32vec, _dvec, _dvec, _out_handle]),
     "arcus_field_retain": (_status, [_handle]),
     "arcus_field_release": (_status, [_handle]),
     "arcus_field_get_kind": (_status, [_handle, POINTER(c_int)]),
     "arcus_field_evaluate": (_status, [_handle, c_size_t, _dvec, _dvec, _dvec]),
     "arcus_advance_params_init": (_status, [POINTER(AdvanceParamsStruct)]),
-    "arcus_features_to_string": (_status, [c_uint32, c_char_p, c_size_t]),
-    "arcus_advance": (_status, [_handle, _handle, POINTER(AdvanceParamsStruct), c_size_t, _dvec, _dvec, _out_handle]),
+    "arcus_features_to_string": (_status, [c_uint64, c_char_p, c_size_t]),
+    "arcus_advance": (
+        _status,
+        [_handle, _handle, POINTER(AdvanceParamsStruct), c_size_t, _dvec, _dvec, _dvec, _out_handle],
+    ),
     "arcus_job_retain": (_status, [_handle]),
     "arcus_job_release": (_status, [_handle]),
     "arcus_job_get_count": (_status, [_handle, POINTER(c_size_t)]),
@@ -140,7 +149,8 @@ _PROTOTYPES = {
     ),
     "arcus_job_get_path_size": (_status, [_handle, POINTER(c_size_t)]),
     "arcus_job_get_paths": (_status, [_handle, POINTER(c_uint64), _dvec, POINTER(c_uint64)]),
-    "arcus_job_get_features": (_status, [_handle, POINTER(c_uint32)]),
+    "arcus_job_get_failures": (_status, [_handle, POINTER(c_int32)]),
+    "arcus_job_get_features": (_status, [_handle, POINTER(c_uint64)]),
     "arcus_job_get_stats": (_status, [_handle, POINTER(JobStatsStruct)]),
 }
 
@@ -259,6 +269,25 @@ def check(code, ctx_handle=None):
     """
     if code != 0:
         raise error_for(code, last_error(ctx_handle), status_name(code))
+
+
+def _read_features():
+    """Kernel feature name -> ARCUS_FEATURE_* bit, from the library's own table."""
+    table = {}
+    buffer = ctypes.create_string_buffer(256)
+    for shift in range(64):
+        if lib.arcus_features_to_string(1 << shift, buffer, len(buffer)) == 0:
+            table[decode(buffer.value)] = 1 << shift
+    return table
+
+
+#: Kernel feature name -> bit (ARCUS_FEATURE_*), as the library defines them.
+FEATURES = _read_features()
+
+
+def feature_names(bits):
+    """The names of the ARCUS_FEATURE_* bits set in ``bits``, as a frozenset."""
+    return frozenset(name for name, bit in FEATURES.items() if bits & bit)
 
 
 def vec3(values):

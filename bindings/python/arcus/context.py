@@ -394,7 +394,7 @@ class Context:
         field_handle = self._field(field)
         job = c_void_p()
         code = lib.arcus_advance(ctx, field_handle, byref(params), len(points), _lib.ptr(points), _lib.ptr(heading),
-                                 byref(job))
+                                 None, byref(job))
         if code not in (C.SUCCESS, C.ERROR_INVALID_RAYS, C.ERROR_PATH_OVERFLOW):
             self._check(code)
         # The message lives only until the next call on the context: read it first.
@@ -422,7 +422,7 @@ class Context:
         self._check(lib.arcus_job_get_end_states(
             job, _lib.ptr(positions), _lib.ptr(directions), _lib.ptr(steps, c_uint64), _lib.ptr(status, c_int32),
             _lib.ptr(lengths)))
-        bits = c_uint32()
+        bits = c_uint64()
         self._check(lib.arcus_job_get_features(job, byref(bits)))
         stats = _lib.JobStatsStruct()
         self._check(lib.arcus_job_get_stats(job, byref(stats)))
@@ -432,13 +432,14 @@ class Context:
             steps=steps,
             status=status,
             lengths=lengths,
-            features=C.feature_names(bits.value),
+            features=_lib.feature_names(bits.value),
             feature_bits=bits.value,
             stats={
                 "build_seconds": stats.build_seconds,
                 "kernel_seconds": stats.kernel_seconds,
                 "total_seconds": stats.total_seconds,
-                "cache_hit": bool(stats.cache_hit),
+                "program_origin": ("built", "memory cache", "disk cache")[stats.program_origin],
+                "launches": stats.launches,
                 "lanes": stats.lanes,
                 "groups": stats.groups,
             },

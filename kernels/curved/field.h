@@ -1,13 +1,13 @@
 /* Index-of-refraction fields: n and ∇n at a point, analytic where the form allows
  * (thesis §2.2.2, §4.1.6).  Shared word for word by the host (arcus_field_evaluate,
  * double) and the kernels (REALV lanes), so both compute the same numbers.
- * The field kind is fixed at kernel build time by ARCUS_FIELD_KIND (the device only
- * compiles the field its job uses); the host passes the kind at run time.           */
+ * The field kind is fixed at kernel build time by one ARCUS_FIELD_<KIND> define (the
+ * device only compiles the field its job uses); the host passes the kind at run time. */
 #ifndef ARCUS_FIELD_H
 #define ARCUS_FIELD_H
 
 #ifndef __OPENCL_C_VERSION__
-#include "arcus_real.h" /* the device source has it prepended */
+#include "common/real.h" /* the device source has it prepended */
 #endif
 
 /* Field kinds: the values of arcus_field_kind in arcus.h. */
@@ -54,20 +54,72 @@
 
 #ifdef __OPENCL_C_VERSION__
 ARCUS_DECLARE_FIELD_DESC(field_desc, REAL, int);
-#define ARCUS_FIELD_KIND_OF(f) ARCUS_FIELD_KIND /* a build-time constant on the device */
+/* The kind is a build-time constant on the device, from the job's field feature. */
+#if defined(ARCUS_FIELD_LINEAR)
+#define ARCUS_FIELD_KIND ARCUS_KIND_LINEAR
+#elif defined(ARCUS_FIELD_LINEAR_N2)
+#define ARCUS_FIELD_KIND ARCUS_KIND_LINEAR_N2
+#elif defined(ARCUS_FIELD_LUNEBURG)
+#define ARCUS_FIELD_KIND ARCUS_KIND_LUNEBURG
+#elif defined(ARCUS_FIELD_FISHEYE)
+#define ARCUS_FIELD_KIND ARCUS_KIND_FISHEYE
+#elif defined(ARCUS_FIELD_ATMOSPHERE)
+#define ARCUS_FIELD_KIND ARCUS_KIND_ATMOSPHERE
+#elif defined(ARCUS_FIELD_GRID)
+#define ARCUS_FIELD_KIND ARCUS_KIND_GRID
+#else
+#define ARCUS_FIELD_KIND ARCUS_KIND_CONSTANT
+#endif
+#define ARCUS_FIELD_KIND_OF(m) ARCUS_FIELD_KIND
 #else
 ARCUS_DECLARE_FIELD_DESC(arcus_field_desc_d, double, int32_t);
 ARCUS_DECLARE_FIELD_DESC(arcus_field_desc_f, float, int32_t);
 typedef arcus_field_desc_d field_desc;
-#define ARCUS_FIELD_KIND_OF(f) ((f)->kind)
+#define ARCUS_FIELD_KIND_OF(m) ((m)->f->kind)
 #endif
+
+/* A field as one ray group sees it: the description, its data (atmosphere segments or
+ * grid values) and, for per-ray wavelengths (ARCUS_USE_DISPERSION), each lane's
+ * own refractivity in place of the description's. */
+typedef struct medium {
+  const field_desc* f;
+  ARCUS_GLOBAL const REAL* data;
+#ifdef ARCUS_USE_DISPERSION
+  REALV refractivity;
+#endif
+} medium;
+
+#ifdef ARCUS_USE_DISPERSION
+#define MEDIUM_REFRACTIVITY(m) ((m)->refractivity)
+#define GROUP_MEDIUM(m, g) (&(m)[g]) /* each lane group has its own wavelengths */
+#else
+#define MEDIUM_REFRACTIVITY(m) ((m)->f->refractivity)
+#define GROUP_MEDIUM(m, g) (m) /* one medium for all groups */
+#endif
+
+/* Vacuum wavelengths Ciddor's dispersion formula covers, nm. */
+#define ARCUS_MIN_WAVELENGTH 300.0
+#define ARCUS_MAX_WAVELENGTH 1690.0
+
+/* (n − 1)·T/p of dry air, K/Pa, at a vacuum wavelength in nm: Ciddor (1996), Appl.
+ * Opt. 35, 1566, eq. 1 (standard air: 15 °C, 101 325 Pa, 450 ppm CO2), scaled by the
+ * ideal-gas law so that n − 1 = refractivity·p/T (the compressibility of air changes
+ * n − 1 by < 0.05 %). */
+ARCUS_INLINE REALV ciddor_refractivity(REALV wavelength_nm) {
+  REALV sigma = RC(1000) / wavelength_nm; /* 1/µm */
+  REALV sigma2 = sigma * sigma;
+  REALV standard = RC(1e-8) * (RC(5792105) / (RC(238.0185) - sigma2) + RC(167917) / (RC(57.362) - sigma2));
+  return standard * RC(288.15 / 101325.0);
+}
 
 /* Atmosphere (thesis §3.1.1): temperature piecewise linear in geopotential height H
  * (US Standard Atmosphere 1976 plus inversion layers), pressure from the hydrostatic
  * equation in closed form per segment, n − 1 proportional to density p/T (Ciddor's
  * dry-air refractivity at the wavelength, scaled by the ideal-gas law).             */
-ARCUS_INLINE void atmosphere_eval(const field_desc* f, ARCUS_GLOBAL const REAL* seg, REALV x, REALV y, REALV z,
-                                  REALV* n, REALV* gx, REALV* gy, REALV* gz) {
+ARCUS_INLINE void atmosphere_eval(const medium* m, REALV x, REALV y, REALV z, REALV* n, REALV* gx, REALV* gy,
+                                  REALV* gz) {
+  const field_desc* f = m->f;
+  ARCUS_GLOBAL const REAL* seg = m->data;
   REALV radius = f->spherical ? sqrt(x * x + y * y + z * z) : y;
   REALV h = f->spherical ? radius - f->earth_radius : y;
   REALV ratio = f->geopotential_radius / (f->geopotential_radius + h);
@@ -92,7 +144,7 @@ ARCUS_INLINE void atmosphere_eval(const field_desc* f, ARCUS_GLOBAL const REAL* 
   MASKV isothermal = fabs(x_rel) < RC(1e-12);
   REALV integral = SEL(log1p(x_rel) / L, dH / Tb, isothermal);
   REALV p = pb * exp(RC(-ARCUS_ATM_G_M_OVER_R) * integral);
-  REALV refr = f->refractivity * p / T; /* n − 1 */
+  REALV refr = MEDIUM_REFRACTIVITY(m) * p / T; /* n − 1 */
   *n = RC(1) + refr;
   /* d(p/T)/dH = (p/T)·(−gM/(R·T) − L/T), then the chain rule to geometric height. */
   REALV dn_dh = refr * (RC(-ARCUS_ATM_G_M_OVER_R) - L) / T * dH_dh;
@@ -164,10 +216,10 @@ ARCUS_INLINE void grid_eval(const field_desc* f, ARCUS_GLOBAL const REAL* values
 #endif
 }
 
-/* n and ∇n of the field at (x, y, z).  `data` holds atmosphere segments or grid values. */
-ARCUS_INLINE void field_eval(const field_desc* f, ARCUS_GLOBAL const REAL* data, REALV x, REALV y, REALV z,
-                             REALV* n, REALV* gx, REALV* gy, REALV* gz) {
-  const int kind = ARCUS_FIELD_KIND_OF(f);
+/* n and ∇n of the field at (x, y, z). */
+ARCUS_INLINE void field_eval(const medium* m, REALV x, REALV y, REALV z, REALV* n, REALV* gx, REALV* gy, REALV* gz) {
+  const field_desc* f = m->f;
+  const int kind = ARCUS_FIELD_KIND_OF(m);
   if (kind == ARCUS_KIND_CONSTANT) {
     *n = (REALV)f->n0;
     *gx = *gy = *gz = RC(0);
@@ -204,9 +256,9 @@ ARCUS_INLINE void field_eval(const field_desc* f, ARCUS_GLOBAL const REAL* data,
     *gy = s * dy;
     *gz = s * dz;
   } else if (kind == ARCUS_KIND_ATMOSPHERE) {
-    atmosphere_eval(f, data, x, y, z, n, gx, gy, gz);
+    atmosphere_eval(m, x, y, z, n, gx, gy, gz);
   } else {
-    grid_eval(f, data, x, y, z, n, gx, gy, gz);
+    grid_eval(f, m->data, x, y, z, n, gx, gy, gz);
   }
 }
 

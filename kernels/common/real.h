@@ -1,23 +1,26 @@
 /* Number types for code shared by the host (C++, one double at a time) and the device
- * (OpenCL C, ARCUS_LANES rays side by side in vector lanes).
+ * (OpenCL C, ARCUS_LANES items side by side in vector lanes).
  *
  * Why lanes: PoCL does not vectorise across work-items when the kernel body holds a
- * loop (a ray's step loop), so the CPU kernels hold several rays per work-item in
- * doubleN vectors; on a GPU ARCUS_LANES is 1 and the same code is one ray per
- * work-item (../shared/notes/opencl-on-pocl.md).
+ * loop (a ray's step loop): such a kernel runs scalar, only twice as fast as one C++
+ * thread.  So the CPU kernels hold several items per work-item in doubleN vectors, and
+ * each work-item several independent groups of them to hide latency; on a GPU
+ * ARCUS_LANES is 1 and the same code is one item per work-item (README, "Kernels").
  *
- *   REAL   scalar real (double, or float with ARCUS_FEATURE_FLOAT)
+ *   REAL   scalar real (double, or float with ARCUS_USE_FLOAT)
  *   REALV  ARCUS_LANES reals;  MASKV the result of comparing two REALV;
  *   IDXV   an integer per lane, the same width as MASKV
  *   SEL(a, b, m)  b where m holds, else a;   ANY(m)  whether m holds in some lane
  *   RC(x)  a literal in REAL precision
+ *   VLOAD/VSTORE       REALV from/to a __global REAL array, lane group i
+ *   VLOAD_I/VSTORE_I   IDXV from/to a __global int array, lane group i
  */
 #ifndef ARCUS_REAL_H
 #define ARCUS_REAL_H
 
 #ifdef __OPENCL_C_VERSION__
 /* ---------------------------------------------------------------- device */
-#ifndef ARCUS_FEATURE_FLOAT
+#ifndef ARCUS_USE_FLOAT
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 #define REAL double
 #define IDX long
@@ -37,6 +40,8 @@
 #define VLOAD(i, p) ((p)[i])
 #define VSTORE(v, i, p) ((p)[i] = (v))
 #define VSTORE_IDX(v, i, p) ((p)[i] = (v))
+#define VLOAD_I(i, p) ((IDXV)(p)[i])
+#define VSTORE_I(v, i, p) ((p)[i] = (int)(v))
 #define FLOATV float
 #define TO_FLOATV(x) ((float)(x))
 #define TO_REALV(x) ((REAL)(x))
@@ -50,13 +55,22 @@
 #define VLOAD(i, p) ARCUS_CAT(vload, ARCUS_LANES)((i), (p))
 #define VSTORE(v, i, p) ARCUS_CAT(vstore, ARCUS_LANES)((v), (i), (p))
 #define VSTORE_IDX(v, i, p) ARCUS_CAT(vstore, ARCUS_LANES)((v), (i), (p))
+#define VLOAD_I(i, p) ARCUS_CAT(ARCUS_CAT(convert_, IDX), ARCUS_LANES)(ARCUS_CAT(vload, ARCUS_LANES)((i), (p)))
+#define VSTORE_I(v, i, p) ARCUS_CAT(vstore, ARCUS_LANES)(ARCUS_CAT(convert_int, ARCUS_LANES)(v), (i), (p))
 #define FLOATV ARCUS_CAT(float, ARCUS_LANES)
 #define TO_FLOATV(x) ARCUS_CAT(convert_float, ARCUS_LANES)(x)
 #define TO_REALV(x) ARCUS_CAT(ARCUS_CAT(convert_, REAL), ARCUS_LANES)(x)
 #endif
 #define RC(x) ((REAL)(x))
-#define ARCUS_INLINE inline __attribute__((always_inline)) /* PoCL left big helpers out of line */
+#define ARCUS_INLINE static inline __attribute__((always_inline)) /* PoCL left big helpers out of line */
 #define ARCUS_GLOBAL __global
+
+/* The groups of a work-item advance in lockstep, one stage at a time for all of them,
+ * so each stage offers ARCUS_GROUPS independent dependency chains to the core (a single
+ * chain is latency-bound: measured 3× slower).  FOR_N loops over the first n groups
+ * (n a constant after inlining, so fully unrolled). */
+#define FOR_N(g, n) _Pragma("unroll") for (int g = 0; g < (n); ++g)
+#define FOR_GROUPS(g) FOR_N(g, ARCUS_GROUPS)
 
 #else
 /* ---------------------------------------------------------------- host */

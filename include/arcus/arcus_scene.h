@@ -1,0 +1,42 @@
+/*
+ * arcus scenes: JSON scene files, read by the library for every engine, the
+ * command-line tools and Python.  Schema: scenes/README.md.  Include arcus.h.
+ *
+ * Reading is strict: an unknown key, a key given twice, a wrong type, a non-finite or
+ * out-of-range number, nesting deeper than 64 levels, or a file that is not a regular
+ * file is an error whose message names the file and the key path ("scene.json:
+ * $.medium.radius: expected a number").  The engine a scene is for follows from its
+ * keys; each engine's header has the calls that use a scene (arcus_curved.h:
+ * arcus_scene_get_field, arcus_scene_advance, ...).
+ */
+#ifndef ARCUS_SCENE_H
+#define ARCUS_SCENE_H
+
+#include "arcus_core.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct arcus_scene_s arcus_scene_t;
+
+/* Reads and checks the scene file at `path` and creates what it describes on ctx
+ * (its medium, ...).  Relative file names inside the scene are relative to the scene
+ * file's directory.  Errors: ARCUS_ERROR_IO (the file cannot be read),
+ * ARCUS_ERROR_INVALID_ARGUMENT (not valid JSON, or not a valid scene).            */
+ARCUS_API arcus_status arcus_scene_load(arcus_context_t* ctx, const char* path, arcus_scene_t** out);
+ARCUS_API arcus_status arcus_scene_retain(arcus_scene_t* scene);
+ARCUS_API arcus_status arcus_scene_release(arcus_scene_t* scene);
+
+/* Strings owned by the scene, valid while it lives: its "name" (letters, digits,
+ * '_', '-', '.'), its "description" ("" if none), the document as read (pretty
+ * printed JSON, keys in the author's order), and the engine it is for ("curved"). */
+ARCUS_API arcus_status arcus_scene_get_name(arcus_scene_t* scene, const char** name);
+ARCUS_API arcus_status arcus_scene_get_description(arcus_scene_t* scene, const char** description);
+ARCUS_API arcus_status arcus_scene_get_document(arcus_scene_t* scene, const char** json);
+ARCUS_API arcus_status arcus_scene_get_engine(arcus_scene_t* scene, const char** engine);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* ARCUS_SCENE_H */

@@ -1,0 +1,323 @@
+/* Batched ray advance through a non-linear medium (thesis §4.1.6, §4.3.5), in slices.
+ *
+ * Layout: each work-item holds ARCUS_GROUPS independent groups of ARCUS_LANES rays.
+ * The lanes give SIMD on PoCL; the independent groups give the core several
+ * dependency chains to overlap.  On a GPU both are 1: one ray per work-item.
+ *
+ * Slices: a launch advances the rays from their state on the device by at most one
+ * slice (fixed steps: the steps [slice_begin, slice_end); DP45: slice_end attempts) and
+ * stores the state back, so the host can report progress, cancel, and keep any one
+ * launch short.  The state is the result: the host reads it back at the end.
+ *
+ * Each accepted step passes through the per-step hook: with ARCUS_USE_BOX a step
+ * that leaves the box is shortened to end where its path crosses the box (crossing.h);
+ * the rendering engine tests steps against its geometry at the same place.
+ *
+ * Compiled with one ARCUS_METHOD_*, one ARCUS_FIELD_* (none for a constant field), and
+ * optionally ARCUS_USE_{BOX,RECORD_PATH,FLOAT,DISPERSION} (the kernel-side
+ * names of the ARCUS_FEATURE_* bits: see src/curved/features.cpp).  The host prepends
+ * common/real.h, curved/field.h, curved/advance_desc.h, curved/state.h,
+ * curved/integrators.h and curved/crossing.h.                                       */
+
+#ifdef ARCUS_USE_RECORD_PATH
+/* Appends the current point of the lanes in `moved`; counts every point, so a count
+ * above the capacity tells the host how much room the path needed. */
+ARCUS_INLINE void record_point(__global REAL* path, int capacity, size_t first_ray, ray6 y, MASKV moved, IDXV* count) {
+  REAL xs[ARCUS_LANES], ys[ARCUS_LANES], zs[ARCUS_LANES];
+  IDX cs[ARCUS_LANES], ms[ARCUS_LANES];
+  VSTORE(y.x, 0, xs);
+  VSTORE(y.y, 0, ys);
+  VSTORE(y.z, 0, zs);
+  VSTORE_IDX(*count, 0, cs);
+  VSTORE_IDX((IDXV)moved, 0, ms);
+  for (int l = 0; l < ARCUS_LANES; ++l) {
+    if (!ms[l]) continue;
+    if (cs[l] < capacity) {
+      __global REAL* p = path + ((first_ray + l) * (size_t)capacity + (size_t)cs[l]) * 3;
+      p[0] = xs[l];
+      p[1] = ys[l];
+      p[2] = zs[l];
+    }
+    cs[l] += 1;
+  }
+  *count = VLOAD(0, cs);
+}
+#define RECORD(g, moved) \
+  record_point(path, job.path_capacity, (first_vector + (g)) * ARCUS_LANES, y[g], (moved), &points[g])
+#else
+#define RECORD(g, moved)
+#endif
+
+#ifdef ARCUS_USE_DISPERSION
+#define MED(g) (&med[g])
+#else
+#define MED(g) (&med[0])
+#endif
+
+/* Marks the active lanes in `m` FAILED for `why`. */
+#define FAIL(g, m, why)                                                 \
+  do {                                                                  \
+    MASKV fail_ = (m) & (status[g] == (IDXV)ARCUS_STATUS_ACTIVE);       \
+    status[g] = SEL(status[g], (IDXV)ARCUS_STATUS_FAILED, fail_);       \
+    failure[g] = SEL(failure[g], (IDXV)(why), fail_);                   \
+  } while (0)
+
+__kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* wavelengths, __global REAL* state,
+                            __global int* istate, __global REAL* path, const field_desc field,
+                            __global const REAL* field_data, const advance_desc job) {
+  const size_t first_vector = get_global_id(0) * ARCUS_GROUPS;
+  const size_t stride = (size_t)job.stride;
+#define REAL_STATE(c) (state + (c) * stride)
+#define INT_STATE(c) (istate + (c) * stride)
+
+#ifdef ARCUS_USE_DISPERSION
+  medium med[ARCUS_GROUPS];
+  FOR_GROUPS(g) {
+    med[g].f = &field;
+    med[g].data = field_data;
+    /* Each ray's own refractivity; an invalid wavelength gives NaN, and the ray is flagged below. */
+    med[g].refractivity = ciddor_refractivity(VLOAD(first_vector + g, wavelengths));
+  }
+#else
+  medium med[1];
+  med[0].f = &field;
+  med[0].data = field_data;
+#endif
+
+  ray6 y[ARCUS_GROUPS], comp[ARCUS_GROUPS]; /* comp: see ray_advance */
+  REALV s[ARCUS_GROUPS];
+  IDXV steps[ARCUS_GROUPS], status[ARCUS_GROUPS], failure[ARCUS_GROUPS];
+#ifdef ARCUS_USE_RECORD_PATH
+  IDXV points[ARCUS_GROUPS];
+#endif
+#ifdef ARCUS_METHOD_DP45
+  ray6 k1[ARCUS_GROUPS];
+  REALV h[ARCUS_GROUPS];
+  IDXV rejections[ARCUS_GROUPS];
+#endif
+
+  if (job.first_slice) {
+    /* Start: v = n(r0)·d/|d|.  Bad directions, origins or wavelengths are flagged, not
+     * advanced; so is a start where n is not a positive finite number. */
+    FOR_GROUPS(g) {
+      const size_t v = first_vector + g;
+      REALV x = VLOAD(v, rays_in), yy = VLOAD(v, rays_in + stride), z = VLOAD(v, rays_in + 2 * stride);
+      REALV dx = VLOAD(v, rays_in + 3 * stride), dy = VLOAD(v, rays_in + 4 * stride);
+      REALV dz = VLOAD(v, rays_in + 5 * stride);
+      /* Scaled by its largest component first, so that no finite non-zero direction
+       * under- or overflows when squared (the host applies the same test). */
+      REALV dmax = fmax(fmax(fabs(dx), fabs(dy)), fabs(dz));
+      MASKV valid = (dmax > RC(0)) & isfinite(dx) & isfinite(dy) & isfinite(dz) & isfinite(x) & isfinite(yy) &
+                    isfinite(z); /* each component: fmax ignores NaNs */
+#ifdef ARCUS_USE_DISPERSION
+      REALV lambda = VLOAD(v, wavelengths);
+      valid &= (lambda >= RC(ARCUS_MIN_WAVELENGTH)) & (lambda <= RC(ARCUS_MAX_WAVELENGTH));
+#endif
+      dx /= dmax;
+      dy /= dmax;
+      dz /= dmax;
+      REALV n, gx, gy, gz;
+      field_eval(MED(g), x, yy, z, &n, &gx, &gy, &gz);
+      REALV n_over_len = n * rsqrt(dx * dx + dy * dy + dz * dz);
+      y[g].x = x;
+      y[g].y = yy;
+      y[g].z = z;
+      y[g].vx = n_over_len * dx;
+      y[g].vy = n_over_len * dy;
+      y[g].vz = n_over_len * dz;
+      comp[g] = ray_times(y[g], RC(0));
+      s[g] = RC(0);
+      steps[g] = 0;
+      status[g] = SEL((IDXV)ARCUS_STATUS_INVALID_INPUT, (IDXV)ARCUS_STATUS_ACTIVE, valid);
+      failure[g] = (IDXV)ARCUS_FAIL_NONE;
+      FAIL(g, !isfinite(n), ARCUS_FAIL_NOT_FINITE);
+      FAIL(g, !(n > RC(0)), ARCUS_FAIL_INDEX_NOT_POSITIVE);
+#ifdef ARCUS_USE_BOX
+      status[g] = SEL(status[g], (IDXV)ARCUS_STATUS_LEFT_BOX,
+                      (status[g] == (IDXV)ARCUS_STATUS_ACTIVE) & (box_distance(&job, y[g]) > RC(0)));
+#endif
+#ifdef ARCUS_USE_RECORD_PATH
+      points[g] = 0;
+      RECORD(g, status[g] != (IDXV)ARCUS_STATUS_INVALID_INPUT);
+#endif
+#ifdef ARCUS_METHOD_DP45
+      rejections[g] = 0;
+#endif
+    }
+  } else {
+    FOR_GROUPS(g) {
+      const size_t v = first_vector + g;
+      y[g].x = VLOAD(v, REAL_STATE(ARCUS_STATE_X));
+      y[g].y = VLOAD(v, REAL_STATE(ARCUS_STATE_X + 1));
+      y[g].z = VLOAD(v, REAL_STATE(ARCUS_STATE_X + 2));
+      y[g].vx = VLOAD(v, REAL_STATE(ARCUS_STATE_X + 3));
+      y[g].vy = VLOAD(v, REAL_STATE(ARCUS_STATE_X + 4));
+      y[g].vz = VLOAD(v, REAL_STATE(ARCUS_STATE_X + 5));
+      s[g] = VLOAD(v, REAL_STATE(ARCUS_STATE_S));
+#ifdef ARCUS_USE_FLOAT
+      comp[g].x = VLOAD(v, REAL_STATE(ARCUS_STATE_COMP));
+      comp[g].y = VLOAD(v, REAL_STATE(ARCUS_STATE_COMP + 1));
+      comp[g].z = VLOAD(v, REAL_STATE(ARCUS_STATE_COMP + 2));
+      comp[g].vx = VLOAD(v, REAL_STATE(ARCUS_STATE_COMP + 3));
+      comp[g].vy = VLOAD(v, REAL_STATE(ARCUS_STATE_COMP + 4));
+      comp[g].vz = VLOAD(v, REAL_STATE(ARCUS_STATE_COMP + 5));
+#else
+      comp[g] = ray_times(y[g], RC(0));
+#endif
+      steps[g] = VLOAD_I(v, INT_STATE(ARCUS_STATE_STEPS));
+      IDXV word = VLOAD_I(v, INT_STATE(ARCUS_STATE_STATUS));
+      status[g] = word & (IDXV)((1 << ARCUS_FAILURE_SHIFT) - 1);
+      failure[g] = word >> (IDXV)ARCUS_FAILURE_SHIFT;
+#ifdef ARCUS_USE_RECORD_PATH
+      points[g] = VLOAD_I(v, INT_STATE(ARCUS_STATE_POINTS));
+#endif
+#ifdef ARCUS_METHOD_DP45
+      rejections[g] = VLOAD_I(v, INT_STATE(ARCUS_STATE_REJECTIONS));
+      h[g] = VLOAD(v, REAL_STATE(ARCUS_STATE_H));
+#endif
+    }
+  }
+
+#ifdef ARCUS_METHOD_DP45
+  /* FSAL: the first stage is the derivative at the state (recomputed each slice: the
+   * same function of the same state, so slicing does not change the results). */
+  FOR_GROUPS(g) {
+    REALV n;
+    k1[g] = ray_derivative(MED(g), y[g], &n);
+    if (job.first_slice) h[g] = dp_initial_step(&job, y[g], k1[g]);
+  }
+  /* Adaptive: every lane takes its own steps; the loop runs while any lane of any group
+   * is active (neighbouring rays take similar step counts, so idle lanes cost little). */
+  for (int attempt = 0; attempt < job.slice_end; ++attempt) {
+    MASKV alive = 0;
+    FOR_GROUPS(g) alive |= status[g] == (IDXV)ARCUS_STATUS_ACTIVE;
+    if (!ANY(alive)) break;
+#ifdef ARCUS_USE_BOX
+    ray6 y_old[ARCUS_GROUPS], comp_old[ARCUS_GROUPS];
+    REALV s_old[ARCUS_GROUPS];
+    FOR_GROUPS(g) {
+      y_old[g] = y[g];
+      comp_old[g] = comp[g];
+      s_old[g] = s[g];
+    }
+#endif
+    MASKV accepted[ARCUS_GROUPS];
+    REALV h_taken[ARCUS_GROUPS];
+    dp_attempt(med, &job, y, comp, k1, s, h, steps, rejections, status, failure, accepted, h_taken);
+    FOR_GROUPS(g) {
+#ifdef ARCUS_USE_BOX
+      MASKV left = accepted[g] & (box_distance(&job, y[g]) > RC(0));
+      if (ANY(left)) cross_box(MED(g), &job, y_old[g], comp_old[g], s_old[g], h_taken[g], &y[g], &comp[g], &s[g], left);
+      status[g] = SEL(status[g], (IDXV)ARCUS_STATUS_LEFT_BOX, left);
+#endif
+      RECORD(g, accepted[g]);
+    }
+  }
+#else
+  /* Fixed steps: every ray takes the same fixed_steps steps (the last one shortened to
+   * end exactly at `length`), so the loop is uniform and needs no lane masks unless a
+   * box can stop rays early. */
+#ifndef ARCUS_USE_BOX
+  ray6 y_start[ARCUS_GROUPS], comp_start[ARCUS_GROUPS]; /* the last state known good */
+  REALV n_min[ARCUS_GROUPS];
+#ifdef ARCUS_USE_RECORD_PATH
+  IDXV points_start[ARCUS_GROUPS];
+#endif
+  FOR_GROUPS(g) {
+    y_start[g] = y[g];
+    comp_start[g] = comp[g];
+    n_min[g] = (REALV)INFINITY;
+#ifdef ARCUS_USE_RECORD_PATH
+    points_start[g] = points[g];
+#endif
+  }
+#endif
+  for (int k = job.slice_begin; k < job.slice_end; ++k) {
+    const REAL hk = (k == job.fixed_steps - 1) ? job.last_step : job.step;
+    ray6 y_new[ARCUS_GROUPS], comp_new[ARCUS_GROUPS];
+    REALV n0[ARCUS_GROUPS];
+    FOR_GROUPS(g) comp_new[g] = comp[g];
+    method_steps(med, y, y_new, comp_new, (REALV)hk, n0, ARCUS_GROUPS);
+    FOR_GROUPS(g) {
+#ifdef ARCUS_USE_BOX
+      FAIL(g, !(n0[g] > RC(0)), ARCUS_FAIL_INDEX_NOT_POSITIVE);
+      MASKV active = status[g] == (IDXV)ARCUS_STATUS_ACTIVE;
+      REALV s_new = s[g] + hk;
+      MASKV left = active & (box_distance(&job, y_new[g]) > RC(0));
+      if (ANY(left))
+        cross_box(MED(g), &job, y[g], comp[g], s[g], (REALV)hk, &y_new[g], &comp_new[g], &s_new, left);
+      y[g] = ray_select(y[g], y_new[g], active);
+      comp[g] = ray_select(comp[g], comp_new[g], active);
+      s[g] = SEL(s[g], s_new, active);
+      steps[g] += ONE_IF(active);
+      status[g] = SEL(status[g], (IDXV)ARCUS_STATUS_LEFT_BOX, left);
+      RECORD(g, active);
+#else
+      /* n at each step's start: a ray must not enter n <= 0 (checked after the loop). */
+      n_min[g] = fmin(n_min[g], n0[g]);
+      y[g] = y_new[g];
+      comp[g] = comp_new[g];
+      RECORD(g, status[g] == (IDXV)ARCUS_STATUS_ACTIVE);
+#endif
+    }
+  }
+  /* The state after the last step must be finite; without a box the lanes were not
+   * masked, so a lane that failed in this slice goes back to its state at its start. */
+  const int finished = job.slice_end >= job.fixed_steps;
+  /* The rays still active went the whole way, or as far as max_steps allowed: the host
+   * chose fixed_steps as the least n with n·step >= length, or max_steps. */
+  const int stopped_early = job.fixed_steps * job.step < job.length;
+  const REAL s_end = finished ? (stopped_early ? job.fixed_steps * job.step : job.length) : job.slice_end * job.step;
+  FOR_GROUPS(g) {
+    FAIL(g, !ray_finite(y[g]), ARCUS_FAIL_NOT_FINITE);
+#ifndef ARCUS_USE_BOX
+    FAIL(g, !(n_min[g] > RC(0)), ARCUS_FAIL_INDEX_NOT_POSITIVE);
+    /* Only the lanes still active moved legitimately; the others keep their state
+     * (a ray that failed in this slice: its state at the slice's start). */
+    MASKV moved = status[g] == (IDXV)ARCUS_STATUS_ACTIVE;
+    y[g] = ray_select(y_start[g], y[g], moved);
+    comp[g] = ray_select(comp_start[g], comp[g], moved);
+#ifdef ARCUS_USE_RECORD_PATH
+    points[g] = SEL(points_start[g], points[g], moved);
+#endif
+    steps[g] = SEL(steps[g], (IDXV)job.slice_end, moved);
+    s[g] = SEL(s[g], (REALV)s_end, moved);
+#else
+    if (finished) s[g] = SEL(s[g], (REALV)s_end, status[g] == (IDXV)ARCUS_STATUS_ACTIVE);
+#endif
+    if (finished)
+      status[g] = SEL(status[g], (IDXV)(stopped_early ? ARCUS_STATUS_STEP_LIMIT : ARCUS_STATUS_DONE),
+                      status[g] == (IDXV)ARCUS_STATUS_ACTIVE);
+  }
+#endif
+
+  /* The state goes back to the device buffer: the next slice resumes from it, and after
+   * the last one the host reads the results from it. */
+  FOR_GROUPS(g) {
+    const size_t v = first_vector + g;
+    VSTORE(y[g].x, v, REAL_STATE(ARCUS_STATE_X));
+    VSTORE(y[g].y, v, REAL_STATE(ARCUS_STATE_X + 1));
+    VSTORE(y[g].z, v, REAL_STATE(ARCUS_STATE_X + 2));
+    VSTORE(y[g].vx, v, REAL_STATE(ARCUS_STATE_X + 3));
+    VSTORE(y[g].vy, v, REAL_STATE(ARCUS_STATE_X + 4));
+    VSTORE(y[g].vz, v, REAL_STATE(ARCUS_STATE_X + 5));
+    VSTORE(s[g], v, REAL_STATE(ARCUS_STATE_S));
+#ifdef ARCUS_USE_FLOAT
+    VSTORE(comp[g].x, v, REAL_STATE(ARCUS_STATE_COMP));
+    VSTORE(comp[g].y, v, REAL_STATE(ARCUS_STATE_COMP + 1));
+    VSTORE(comp[g].z, v, REAL_STATE(ARCUS_STATE_COMP + 2));
+    VSTORE(comp[g].vx, v, REAL_STATE(ARCUS_STATE_COMP + 3));
+    VSTORE(comp[g].vy, v, REAL_STATE(ARCUS_STATE_COMP + 4));
+    VSTORE(comp[g].vz, v, REAL_STATE(ARCUS_STATE_COMP + 5));
+#endif
+    VSTORE_I(steps[g], v, INT_STATE(ARCUS_STATE_STEPS));
+    VSTORE_I(status[g] | (failure[g] << (IDXV)ARCUS_FAILURE_SHIFT), v, INT_STATE(ARCUS_STATE_STATUS));
+#ifdef ARCUS_USE_RECORD_PATH
+    VSTORE_I(points[g], v, INT_STATE(ARCUS_STATE_POINTS));
+#endif
+#ifdef ARCUS_METHOD_DP45
+    VSTORE_I(rejections[g], v, INT_STATE(ARCUS_STATE_REJECTIONS));
+    VSTORE(h[g], v, REAL_STATE(ARCUS_STATE_H));
+#endif
+  }
+}

@@ -1,0 +1,66 @@
+// Advancing a batch of rays through a field (arcus_advance): the job object, its
+// planning (features, layout, step counts) and its run in slices on the device.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "arcus/arcus_curved.h"
+#include "core/buffer.h"
+#include "core/features.h"
+#include "core/job.h"
+#include "core/kernel_source.h"
+#include "core/layout.h"
+#include "curved/field.h"  // kernels/curved/field.h: the field description shared with the kernels
+
+namespace arcus::curved {
+
+// The curved engine's feature table and kernel source (features.cpp).
+const FeatureTable& feature_table();
+const KernelSource& advance_source();
+
+// The results of an advance: every ray's end state, status and path.
+struct AdvanceJob : arcus_job_s {
+  explicit AdvanceJob(arcus_context_t* ctx) : arcus_job_s(ctx, "advance") {}
+  std::vector<double> positions, directions, lengths;  // count×3, count×3, count
+  std::vector<uint64_t> steps;
+  std::vector<int32_t> status, failures;
+  uint32_t path_capacity = 0;          // points kept per ray
+  std::vector<uint64_t> path_offsets;  // count+1 (empty without record_path)
+  std::vector<uint64_t> path_needed;   // count
+  std::vector<double> path_points;     // path_offsets[count]×3
+};
+
+// The least n with n·step >= length in the kernel's arithmetic (so the last step ends
+// exactly at `length`), capped at max_steps; and that last step.
+struct FixedSteps {
+  int32_t steps = 0;
+  double last_step = 0;
+  bool capped = false;  // max_steps stops the rays before `length`
+};
+template <class Real>
+FixedSteps fixed_steps(double length, double step, uint64_t max_steps);
+
+// What a job compiles and how it is laid out.
+struct Plan {
+  arcus_features features = 0;
+  Layout layout;
+  bool straight = false, dp45 = false, single = false, dispersion = false;
+};
+// Throws INVALID_ARGUMENT or UNSUPPORTED for parameters the job cannot run with.
+// `with_wavelengths`: the call gave per-ray wavelengths.
+Plan plan_advance(const arcus_advance_params& params, const arcus_field_desc_d& field, const std::vector<double>& data,
+                  const arcus_device_info& device, const DeviceEntry& entry, bool with_wavelengths);
+
+// The body of arcus_advance: plans, builds (or reuses) the kernel, runs it in slices
+// and fills a new job.  Returns SUCCESS or a partial status (INVALID_RAYS,
+// PATH_OVERFLOW, CANCELLED) with *message set; throws on other errors.
+arcus_status advance(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params& params, size_t count,
+                     const double* origins, const double* directions, const double* wavelengths, arcus_job_t** job,
+                     std::string* message);
+
+// Fills params with the documented defaults.
+void default_advance_params(arcus_advance_params* params);
+
+}  // namespace arcus::curved
