@@ -11,6 +11,7 @@ std::string kernel_text(const KernelSource& source) {
     if (!body) fail(ARCUS_ERROR_KERNEL_BUILD, std::string("kernel file ") + file + " is not embedded in the library");
     text += "\n#line 1 \"" + std::string(file) + "\"\n" + *body;
   }
+  if (!source.text.empty()) text += "\n#line 1 \"" + std::string(source.name) + "\"\n" + source.text;
   return text;
 }
 

@@ -1,6 +1,7 @@
 #include "curved/advance.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -23,6 +24,8 @@ constexpr uint32_t kCpuGroupsDp45 = 2;   // DP45's seven stages hold more state:
 constexpr double kSliceSeconds = 0.25;   // aim of one launch: progress 4× a second, short GPU launches
 constexpr double kFirstSliceRaySteps = 1 << 24;  // ≈ 20 ms of RK4 on two cores
 constexpr int32_t kFirstSliceAttempts = 256;     // DP45: most rays finish in one slice
+
+std::atomic<int32_t> g_slice_units{0};  // testing::set_slice_units
 
 const char* method_name(int32_t m) {
   switch (m) {
@@ -295,7 +298,10 @@ bool run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
     return std::any_of(status.begin(), status.end(),
                        [](int32_t w) { return (w & ((1 << ARCUS_FAILURE_SHIFT) - 1)) == ARCUS_STATUS_ACTIVE; });
   };
-  double chunk = plan.dp45 ? kFirstSliceAttempts : std::max(1.0, kFirstSliceRaySteps / static_cast<double>(stride));
+  const int32_t fixed_units = g_slice_units.load();
+  double chunk = fixed_units       ? fixed_units
+                 : plan.dp45 ? kFirstSliceAttempts
+                             : std::max(1.0, kFirstSliceRaySteps / static_cast<double>(stride));
   int32_t done = 0;  // fixed: steps taken by every ray so far
   double reported = 0;
   bool cancelled = false;
@@ -308,7 +314,8 @@ bool run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
     const double seconds = kernel.run(ctx, items);
     job->stats.kernel_seconds += seconds;
     job->stats.launches += 1;
-    chunk = std::clamp(chunk * kSliceSeconds / std::max(seconds, 1e-6), std::max(1.0, chunk / 2), chunk * 8);
+    if (!fixed_units)
+      chunk = std::clamp(chunk * kSliceSeconds / std::max(seconds, 1e-6), std::max(1.0, chunk / 2), chunk * 8);
     if (!plan.dp45) done = desc.slice_end;
     const bool finished = plan.dp45 || p.use_box ? !any_active() : done >= desc.fixed_steps;
     if (finished) break;
@@ -439,6 +446,10 @@ Plan plan_advance(const arcus_advance_params& p, const arcus_field_desc_d& field
   plan.layout = choose_layout(entry, plan.straight ? 1 : plan.dp45 ? kCpuGroupsDp45 : kCpuGroupsFixed);
   return plan;
 }
+
+namespace testing {
+void set_slice_units(int32_t units) { g_slice_units = units; }
+}  // namespace testing
 
 void default_advance_params(arcus_advance_params* p) {
   *p = arcus_advance_params{};

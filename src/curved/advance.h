@@ -63,4 +63,10 @@ arcus_status advance(arcus_context_t* ctx, arcus_field_t* field, const arcus_adv
 // Fills params with the documented defaults.
 void default_advance_params(arcus_advance_params* params);
 
+namespace testing {
+// Every slice takes exactly `units` steps (fixed) or attempts (DP45); 0 restores the
+// timed slices.  Results must not depend on it (a determinism test checks).
+void set_slice_units(int32_t units);
+}  // namespace testing
+
 }  // namespace arcus::curved

@@ -24,7 +24,8 @@ const FeatureTableEntry kRegistered(&kTable);
 
 const KernelSource kAdvance{"curved/advance",
                             {"common/real.h", "curved/field.h", "curved/advance_desc.h", "curved/state.h",
-                             "curved/integrators.h", "curved/crossing.h", "curved/advance.cl"}};
+                             "curved/integrators.h", "curved/crossing.h", "curved/advance.cl"},
+                            ""};
 
 }  // namespace
 

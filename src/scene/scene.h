@@ -1,0 +1,34 @@
+// Scenes: the object behind arcus_scene_t, shared by every engine, and the registry of
+// the engines' scene loaders (an engine turns a scene file into its objects; the
+// reader itself, scene/json_reader.h, is shared).
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "arcus/arcus_scene.h"
+#include "core/handle.h"
+
+struct arcus_scene_s : arcus::Handle {
+  arcus_scene_s(arcus_context_t* ctx, const char* engine) : Handle(arcus::HandleType::Scene, ctx), engine(engine) {}
+  const char* engine;  // "curved", ...
+  std::string name, description, document;
+};
+
+namespace arcus::scene {
+
+// Reads the scene file at `path` and creates its objects on ctx.  Runs without the
+// context's lock (file reading may be slow) except inside `locked`, which a loader
+// calls for the part that creates library objects.
+using Locked = std::function<void(const std::function<void()>&)>;
+using Loader = std::function<arcus_scene_s*(arcus_context_t* ctx, const std::string& path, const Locked& locked)>;
+
+void register_loader(const char* engine, Loader loader);
+struct LoaderEntry {
+  LoaderEntry(const char* engine, Loader loader) { register_loader(engine, std::move(loader)); }
+};
+
+// The loader of the scene at `path` (today every scene is a curved one).
+const Loader& loader_for(const std::string& path);
+
+}  // namespace arcus::scene

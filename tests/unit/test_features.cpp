@@ -1,0 +1,63 @@
+// The feature tables: one source for the -D flags, the program-cache key and the names
+// a job reports.  Every public ARCUS_FEATURE_* bit must be in exactly one table, with a
+// unique name and build options of its own.
+#include <gtest/gtest.h>
+
+#include <set>
+#include <string>
+
+#include "arcus/arcus.h"
+#include "core/error.h"
+#include "core/features.h"
+
+namespace {
+
+// Every bit the public headers define (arcus_core.h, arcus_curved.h).
+const arcus_features kPublic[] = {
+    ARCUS_FEATURE_FLOAT,           ARCUS_FEATURE_STRAIGHT,         ARCUS_FEATURE_EULER,
+    ARCUS_FEATURE_RK2,             ARCUS_FEATURE_RK4,              ARCUS_FEATURE_DP45,
+    ARCUS_FEATURE_FIELD_LINEAR,    ARCUS_FEATURE_FIELD_LINEAR_N2,  ARCUS_FEATURE_FIELD_LUNEBURG,
+    ARCUS_FEATURE_FIELD_FISHEYE,   ARCUS_FEATURE_FIELD_ATMOSPHERE, ARCUS_FEATURE_FIELD_GRID,
+    ARCUS_FEATURE_BOX,             ARCUS_FEATURE_RECORD_PATH,      ARCUS_FEATURE_DISPERSION};
+
+TEST(FeatureTables, EveryPublicBitIsInExactlyOneTableWithItsOwnNameAndOptions) {
+  std::set<arcus_features> bits;
+  std::set<std::string> names, options;
+  size_t entries = 0;
+  for (const arcus::FeatureTable* t : arcus::feature_tables())
+    for (const arcus::Feature& f : t->features) {
+      ++entries;
+      EXPECT_EQ(f.bit & (f.bit - 1), 0u) << f.name << ": one bit per feature";
+      EXPECT_TRUE(bits.insert(f.bit).second) << f.name << ": bit defined twice";
+      EXPECT_TRUE(names.insert(f.name).second) << f.name << ": name defined twice";
+      EXPECT_TRUE(options.insert(f.options).second) << f.name << ": options shared with another feature";
+      EXPECT_EQ(std::string(f.options).rfind("-D ARCUS_", 0), 0u) << f.name << ": " << f.options;
+    }
+  EXPECT_EQ(entries, sizeof kPublic / sizeof *kPublic) << "a table holds a bit the headers do not define";
+  for (arcus_features bit : kPublic) EXPECT_EQ(bits.count(bit), 1u) << "bit " << bit << " is in no table";
+  // The core's table comes first and holds the precision bit every engine shares.
+  ASSERT_FALSE(arcus::feature_tables().empty());
+  EXPECT_STREQ(arcus::feature_tables().front()->owner, "core");
+}
+
+TEST(FeatureTables, NamesAndOptionsFollowBitOrder) {
+  const arcus_features f = ARCUS_FEATURE_BOX | ARCUS_FEATURE_DP45 | ARCUS_FEATURE_FLOAT;
+  EXPECT_EQ(arcus::feature_names(f), "FLOAT DP45 BOX");
+  EXPECT_EQ(arcus::feature_options(f),
+            "-D ARCUS_USE_FLOAT -cl-single-precision-constant -D ARCUS_METHOD_DP45 -D ARCUS_USE_BOX");
+  EXPECT_EQ(arcus::feature_names(0), "");
+}
+
+TEST(FeatureTables, AnUnknownBitIsAnError) {
+  try {
+    arcus::feature_names(ARCUS_FEATURE_RK4 | (arcus_features(1) << 63));
+    FAIL() << "bit 63 is no feature";
+  } catch (const arcus::Error& e) {
+    EXPECT_EQ(e.status(), ARCUS_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(e.what()).find("bit 63"), std::string::npos) << e.what();
+  }
+  char buffer[64];
+  EXPECT_EQ(arcus_features_to_string(arcus_features(1) << 40, buffer, sizeof buffer), ARCUS_ERROR_INVALID_ARGUMENT);
+}
+
+}  // namespace

@@ -1,0 +1,64 @@
+// Helpers of the unit suites (which link the library's objects, internals included).
+#pragma once
+
+#include <gtest/gtest.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "arcus/arcus.h"
+
+namespace arcus_unit {
+
+// Sets an environment variable for one scope and restores the previous value.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const std::string& value) : name_(name) {
+    if (const char* old = std::getenv(name)) {
+      had_ = true;
+      old_ = old;
+    }
+    setenv(name, value.c_str(), 1);
+  }
+  ~ScopedEnv() {
+    if (had_)
+      setenv(name_.c_str(), old_.c_str(), 1);
+    else
+      unsetenv(name_.c_str());
+  }
+
+ private:
+  std::string name_, old_;
+  bool had_ = false;
+};
+
+// A fresh directory, removed with its contents at the end of the scope.
+class TempDir {
+ public:
+  TempDir() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "arcus_unit_XXXXXX").string();
+    path_ = mkdtemp(&pattern[0]) ? pattern : "";
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+struct Context {
+  arcus_context_t* ctx = nullptr;
+  Context() { EXPECT_EQ(arcus_context_create(ARCUS_DEVICE_DEFAULT, &ctx), ARCUS_SUCCESS) << arcus_last_error(); }
+  ~Context() {
+    if (ctx) arcus_context_release(ctx);
+  }
+  operator arcus_context_t*() const { return ctx; }
+};
+
+}  // namespace arcus_unit
