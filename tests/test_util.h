@@ -267,29 +267,40 @@ inline RayState catenary_end(double n0, const V3& G, const V3& r0, const V3& d, 
 // s(τ) = ∫0^τ |v| dτ' = ∫0^τ sqrt(α t² + β t + γ) dt with α = |K|²/4, β = v0·K, γ = |v0|².
 // Completing the square (w = t + β/2α, m = |K × v0|·2/|K|²):
 //   ∫ sqrt(α (w² + m²)) dw = √α/2 · [w sqrt(w² + m²) + m² asinh(w/m)].
-// Newton on s(τ) = L (s' = |v| > 0, s convex enough that it converges from τ = L/n0).
-inline RayState linear_n2_end(double a, const V3& K, const V3& r0, const V3& d, double L) {
-  const V3 dh = normalize(d);
-  const double n_start = std::sqrt(a + dot(K, r0));
-  const V3 v0 = n_start * dh;
-  const double K2 = dot(K, K);
-  const double alpha = K2 / 4.0;
-  const double m = 2.0 * norm(cross(K, v0)) / K2;
-  const double w0 = 2.0 * dot(v0, K) / K2;
-  auto F = [&](double w) {
-    const double body = m > 0.0 ? w * std::sqrt(w * w + m * m) + m * m * std::asinh(w / m) : w * std::fabs(w);
-    return std::sqrt(alpha) / 2.0 * body;
-  };
-  auto S = [&](double t) { return F(t + w0) - F(w0); };
-  double tau = L / n_start;
-  for (int i = 0; i < 100; ++i) {
-    const double speed = norm(v0 + (tau / 2.0) * K);
-    const double dt = (S(tau) - L) / speed;
-    tau -= dt;
-    if (std::fabs(dt) <= 1e-16 * std::fabs(tau)) break;
+struct Parabola {
+  double a;
+  V3 K, r0, v0;
+  Parabola(double a_, const V3& K_, const V3& r0_, const V3& d) : a(a_), K(K_), r0(r0_) {
+    v0 = std::sqrt(a + dot(K, r0)) * normalize(d);
   }
-  const V3 v = v0 + (tau / 2.0) * K;
-  return {r0 + tau * v0 + (tau * tau / 4.0) * K, normalize(v)};
+  V3 position(double tau) const { return r0 + tau * v0 + (tau * tau / 4.0) * K; }
+  V3 direction(double tau) const { return normalize(v0 + (tau / 2.0) * K); }
+  double arc_length(double tau) const {
+    const double K2 = dot(K, K), alpha = K2 / 4.0;
+    const double m = 2.0 * norm(cross(K, v0)) / K2, w0 = 2.0 * dot(v0, K) / K2;
+    auto F = [&](double w) {
+      const double body = m > 0.0 ? w * std::sqrt(w * w + m * m) + m * m * std::asinh(w / m) : w * std::fabs(w);
+      return std::sqrt(alpha) / 2.0 * body;
+    };
+    return F(tau + w0) - F(w0);
+  }
+  // The τ where the arc length is L: Newton (s' = |v| > 0, s convex enough that it
+  // converges from τ = L/n0).
+  double tau_at(double L) const {
+    double tau = L / norm(v0);
+    for (int i = 0; i < 100; ++i) {
+      const double dt = (arc_length(tau) - L) / norm(v0 + (tau / 2.0) * K);
+      tau -= dt;
+      if (std::fabs(dt) <= 1e-16 * std::fabs(tau)) break;
+    }
+    return tau;
+  }
+};
+
+inline RayState linear_n2_end(double a, const V3& K, const V3& r0, const V3& d, double L) {
+  const Parabola p(a, K, r0, d);
+  const double tau = p.tau_at(L);
+  return {p.position(tau), p.direction(tau)};
 }
 
 // Maxwell's fish-eye n = n0/(1 + |r − c|²/R²): every ray is a circle, and every ray

@@ -185,7 +185,8 @@ ARCUS_INLINE void dp_attempt(const medium* m, const advance_desc* job, ray6* y, 
   FOR_GROUPS(g) {
     MASKV active = status[g] == (IDXV)ARCUS_STATUS_ACTIVE;
     REALV norm = dp_error_norm(job, y[g], y5[g], err[g]);
-    norm = SEL((REALV)INFINITY, norm, ray_finite(y5[g]) & isfinite(n7[g]));
+    MASKV finite = ray_finite(y5[g]) & isfinite(n7[g]);
+    norm = SEL((REALV)INFINITY, norm, finite);
     MASKV ok = active & (norm <= RC(1));
     MASKV nonpositive = ok & !(n7[g] > RC(0));
     MASKV accept = ok & !nonpositive;
@@ -203,7 +204,8 @@ ARCUS_INLINE void dp_attempt(const medium* m, const advance_desc* job, ray6* y, 
 
     MASKV gave_up = reject & ((rejections[g] > (IDXV)job->max_rejections) | (h_taken[g] <= job->min_step));
     status[g] = SEL(status[g], (IDXV)ARCUS_STATUS_FAILED, gave_up | nonpositive);
-    failure[g] = SEL(failure[g], (IDXV)ARCUS_FAIL_TOLERANCE, gave_up);
+    /* Giving up on a state that overflows is no tolerance problem. */
+    failure[g] = SEL(failure[g], SEL((IDXV)ARCUS_FAIL_NOT_FINITE, (IDXV)ARCUS_FAIL_TOLERANCE, finite), gave_up);
     failure[g] = SEL(failure[g], (IDXV)ARCUS_FAIL_INDEX_NOT_POSITIVE, nonpositive);
     status[g] = SEL(status[g], (IDXV)ARCUS_STATUS_DONE, accept & last[g]);
     status[g] = SEL(status[g], (IDXV)ARCUS_STATUS_STEP_LIMIT, accept & !last[g] & (steps[g] >= (IDXV)job->max_steps));
