@@ -253,7 +253,7 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
       status[g] = SEL(status[g], (IDXV)ARCUS_STATUS_LEFT_BOX, left);
       RECORD(g, active);
 #else
-      /* n at each step's start: a ray must not enter n <= 0 (checked after the loop). */
+      /* The least n of the step: a ray must not enter n <= 0 (checked after the loop). */
       n_min[g] = fmin(n_min[g], n0[g]);
       y[g] = y_new[g];
       comp[g] = comp_new[g];

@@ -6,8 +6,9 @@
  * The steps act on `ng` lane groups in lockstep, stage by stage, so each stage offers
  * ng independent dependency chains (FOR_N); the kernel's loop passes all its groups,
  * the box crossing (crossing.h) one.  m: the groups' media (GROUP_MEDIUM).  *n0
- * receives n at each group's start, which the caller checks (a ray must not enter
- * n <= 0).  comp: see ray_advance.                                                  */
+ * receives the least n the step's stages met, which the caller checks: a ray must not
+ * enter n <= 0, where the ray equation breaks down (a step across it can come back
+ * out as if reflected).  comp: see ray_advance.                                      */
 
 #if defined(ARCUS_METHOD_STRAIGHT)
 /* A constant field has ∇n = 0 and |v| = n0: r + h·v/n0 is exact. */
@@ -36,7 +37,10 @@ ARCUS_INLINE void method_steps(const medium* m, const ray6* y, ray6* y_new, ray6
   ray6 k[ARCUS_GROUPS];
   REALV n;
   FOR_N(g, ng) k[g] = ray_derivative(GROUP_MEDIUM(m, g), y[g], &n0[g]);
-  FOR_N(g, ng) k[g] = ray_derivative(GROUP_MEDIUM(m, g), ray_step(y[g], RC(0.5) * h, k[g]), &n);
+  FOR_N(g, ng) {
+    k[g] = ray_derivative(GROUP_MEDIUM(m, g), ray_step(y[g], RC(0.5) * h, k[g]), &n);
+    n0[g] = fmin(n0[g], n);
+  }
   FOR_N(g, ng) y_new[g] = ray_advance(y[g], h, k[g], &comp[g]);
 }
 #elif defined(ARCUS_METHOD_RK4)
@@ -52,14 +56,17 @@ ARCUS_INLINE void method_steps(const medium* m, const ray6* y, ray6* y_new, ray6
   }
   FOR_N(g, ng) {
     k[g] = ray_derivative(GROUP_MEDIUM(m, g), ray_step(y[g], half_h, k[g]), &n);
+    n0[g] = fmin(n0[g], n);
     acc[g] = ray_fma(k[g], RC(2), acc[g]);
   }
   FOR_N(g, ng) {
     k[g] = ray_derivative(GROUP_MEDIUM(m, g), ray_step(y[g], half_h, k[g]), &n);
+    n0[g] = fmin(n0[g], n);
     acc[g] = ray_fma(k[g], RC(2), acc[g]);
   }
   FOR_N(g, ng) {
     k[g] = ray_derivative(GROUP_MEDIUM(m, g), ray_step(y[g], h, k[g]), &n);
+    n0[g] = fmin(n0[g], n);
     y_new[g] = ray_advance(y[g], h * RC(1.0 / 6.0), ray_fma(k[g], RC(1), acc[g]), &comp[g]);
   }
 }
