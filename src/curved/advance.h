@@ -12,6 +12,7 @@
 #include "core/job.h"
 #include "core/kernel_source.h"
 #include "core/layout.h"
+#include "curved/params.h"
 #include "curved/field.h"  // kernels/curved/field.h: the field description shared with the kernels
 
 namespace arcus::curved {
@@ -59,9 +60,6 @@ Plan plan_advance(const arcus_advance_params& params, const arcus_field_desc_d& 
 arcus_status advance(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params& params, size_t count,
                      const double* origins, const double* directions, const double* wavelengths, arcus_job_t** job,
                      std::string* message);
-
-// Fills params with the documented defaults.
-void default_advance_params(arcus_advance_params* params);
 
 namespace testing {
 // Every slice takes exactly `units` steps (fixed) or attempts (DP45); 0 restores the

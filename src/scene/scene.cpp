@@ -1,0 +1,102 @@
+#include "scene/scene.h"
+
+#include <exception>
+#include <utility>
+#include <vector>
+
+#include "core/call.h"
+#include "core/error.h"
+
+using arcus::HandleType;
+using arcus::require_pointer;
+using namespace arcus::api;
+
+namespace arcus::scene {
+namespace {
+
+std::vector<std::pair<const char*, Loader>>& loaders() {
+  static std::vector<std::pair<const char*, Loader>> all;
+  return all;
+}
+
+}  // namespace
+
+void register_loader(const char* engine, Loader loader) { loaders().emplace_back(engine, std::move(loader)); }
+
+const Loader& loader_for(const std::string& path) {
+  // One engine reads scene files so far; the next one to do so decides by the
+  // document's keys here.
+  if (loaders().empty()) fail(ARCUS_ERROR_UNSUPPORTED, path + ": no engine reads scene files");
+  return loaders().front().second;
+}
+
+}  // namespace arcus::scene
+
+namespace {
+
+template <class Body>
+arcus_status on_scene(arcus_scene_t* scene, Body&& body) {
+  return simple<arcus_scene_s>(scene, HandleType::Scene, "scene", body);
+}
+
+// A string of the scene, valid while it lives.
+arcus_status get_string(arcus_scene_t* scene, const char** out, const char* name,
+                        const std::string arcus_scene_s::*member) {
+  return on_scene(scene, [&](arcus_scene_s* s) {
+    require_pointer(out, name);
+    *out = (s->*member).c_str();
+  });
+}
+
+}  // namespace
+
+extern "C" {
+
+arcus_status arcus_scene_load(arcus_context_t* ctx, const char* path, arcus_scene_t** out) {
+  // Reading and checking the file happen before the context's lock is taken; the loader
+  // takes it only to create objects.  Errors of either part are reported under the lock.
+  arcus_scene_s* scene = nullptr;
+  std::exception_ptr failed;
+  if (arcus::find_any_handle(ctx) && out && path) {
+    try {
+      scene = arcus::scene::loader_for(path)(ctx, path, [&](const std::function<void()>& create) {
+        std::lock_guard<std::mutex> lock(ctx->lock);
+        create();
+      });
+    } catch (...) {
+      failed = std::current_exception();
+    }
+  }
+  return simple<arcus_context_s>(ctx, HandleType::Context, "ctx", [&](arcus_context_s*) {
+    require_pointer(out, "out");
+    *out = nullptr;
+    require_pointer(path, "path");
+    if (failed) std::rethrow_exception(failed);
+    *out = scene;
+  });
+}
+
+arcus_status arcus_scene_retain(arcus_scene_t* scene) { return retain(scene, HandleType::Scene, "scene"); }
+
+arcus_status arcus_scene_release(arcus_scene_t* scene) { return release(scene, HandleType::Scene, "scene"); }
+
+arcus_status arcus_scene_get_name(arcus_scene_t* scene, const char** name) {
+  return get_string(scene, name, "name", &arcus_scene_s::name);
+}
+
+arcus_status arcus_scene_get_description(arcus_scene_t* scene, const char** description) {
+  return get_string(scene, description, "description", &arcus_scene_s::description);
+}
+
+arcus_status arcus_scene_get_document(arcus_scene_t* scene, const char** json) {
+  return get_string(scene, json, "json", &arcus_scene_s::document);
+}
+
+arcus_status arcus_scene_get_engine(arcus_scene_t* scene, const char** engine) {
+  return on_scene(scene, [&](arcus_scene_s* s) {
+    require_pointer(engine, "engine");
+    *engine = s->engine;
+  });
+}
+
+}  // extern "C"
