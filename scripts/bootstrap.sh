@@ -8,6 +8,7 @@ debs=(
   pocl-opencl-icd ocl-icd-opencl-dev ocl-icd-libopencl1 opencl-c-headers opencl-clhpp-headers clinfo
   libembree-dev libopenimageio-dev libopenmesh-dev libglfw3-dev nlohmann-json3-dev
   libgtest-dev googletest libboost-dev
+  clang-14 libclang-rt-14-dev
 )
 missing=()
 for p in "${debs[@]}"; do

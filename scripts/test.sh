@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, and runs every test: the ctest suites (C/C++) and
-# the pytest suite (Python).  Exits non-zero when any test fails.  CI runs this.
+# Installs what is missing, builds, and runs every test: the ctest suites (C/C++), the
+# physics suite again in the one-ray-per-work-item layout GPUs get, the pytest suite,
+# then all of them again under AddressSanitizer + UndefinedBehaviorSanitizer, and the
+# scene reader's fuzzer for a minute.  Exits non-zero when anything fails.  CI runs this.
 set -uo pipefail
 cd "$(dirname "$0")/.."
+start=$SECONDS
 bash scripts/bootstrap.sh || exit 1
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null || exit 1
 cmake --build build -j2 || exit 1
@@ -16,5 +19,12 @@ ctest_rc=$?
 scalar_rc=$?
 python3 -m pytest -q tests/python
 pytest_rc=$?
-echo "ctest exit $ctest_rc, ctest (one ray per work-item) exit $scalar_rc, pytest exit $pytest_rc"
-[ $ctest_rc -eq 0 ] && [ $scalar_rc -eq 0 ] && [ $pytest_rc -eq 0 ]
+# The library, its tests and pytest against it, built with ASan + UBSan: any report fails.
+bash scripts/sanitize.sh
+sanitize_rc=$?
+# libFuzzer on the scene reader: the regression inputs, then 60 s of fuzzing.
+bash tests/fuzz/run_fuzz.sh 60
+fuzz_rc=$?
+echo "ctest exit $ctest_rc, ctest (one ray per work-item) exit $scalar_rc, pytest exit $pytest_rc," \
+     "sanitizers exit $sanitize_rc, fuzzer exit $fuzz_rc; $((SECONDS - start)) s in all"
+[ $ctest_rc -eq 0 ] && [ $scalar_rc -eq 0 ] && [ $pytest_rc -eq 0 ] && [ $sanitize_rc -eq 0 ] && [ $fuzz_rc -eq 0 ]

@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# Builds arcus with AddressSanitizer + UndefinedBehaviorSanitizer into build-asan/ and runs
+# the ctest and pytest suites against that build.  Exits non-zero on a build failure, a
+# failed test or any sanitizer report.  Re-running rebuilds incrementally.
+# Logs: build-asan/logs/.  Needs what scripts/bootstrap.sh installs.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+root=$PWD
+build=$root/build-asan
+logs=$build/logs
+mkdir -p "$logs"
+
+# ---- build.  Flags on the command line, so CMakeLists.txt and build/ stay untouched.
+san="-fsanitize=address,undefined -fno-omit-frame-pointer"
+t0=$SECONDS
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DARCUS_BUILD_TESTS=ON -DARCUS_BUILD_BENCH=OFF -DARCUS_BUILD_APPS=ON \
+  "-DCMAKE_C_FLAGS=$san" "-DCMAKE_CXX_FLAGS=$san" \
+  "-DCMAKE_EXE_LINKER_FLAGS=$san" "-DCMAKE_SHARED_LINKER_FLAGS=$san" \
+  > "$logs/configure.log" 2>&1 || { cat "$logs/configure.log"; echo "sanitize: configure failed"; exit 1; }
+cmake --build "$build" -j2 > "$logs/build.log" 2>&1 \
+  || { tail -n 40 "$logs/build.log"; echo "sanitize: build failed; log: $logs/build.log"; exit 1; }
+build_s=$((SECONDS - t0))
+
+# Uninstrumented programs (python, and the installed-library consumer) must load the ASan
+# runtime first; python needs libstdc++ preloaded too, or ASan's __cxa_throw interceptor
+# finds nothing to forward to and the first C++ exception in libarcus aborts.
+cxx=$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' "$build/CMakeCache.txt")
+preload=""
+for name in libasan.so libstdc++.so; do
+  file=$("$cxx" -print-file-name=$name)
+  [ -f "$file" ] || { echo "sanitize: $cxx cannot find $name"; exit 1; }
+  preload="$preload${preload:+:}$(realpath "$file")"
+done
+
+# Every report is fatal.  UBSan halts by run-time option rather than -fno-sanitize-recover,
+# so that a hand run with UBSAN_OPTIONS=halt_on_error=0 lists all reports at once.
+asan="halt_on_error=1:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:report_error_type=1"
+export LSAN_OPTIONS="suppressions=$root/tests/sanitizers/lsan.supp:print_suppressions=0"
+# A report from a child whose exit status nobody checked still fails the run.
+reports() { grep -HnE "ERROR: (AddressSanitizer|LeakSanitizer)|SUMMARY: UndefinedBehaviorSanitizer|: runtime error: " "$@"; }
+
+# ---- ctest: instrumented programs, leak detection on.  One test at a time (-j1): PoCL
+# uses every core for each kernel.
+t0=$SECONDS
+(cd "$build" && ASAN_OPTIONS="$asan:detect_leaks=1" \
+  ctest -j1 --output-on-failure -E '^c_api_linkage_installed$') 2>&1 | tee "$logs/ctest.log"
+ctest_rc=$?
+cp "$build/Testing/Temporary/LastTest.log" "$logs/ctest-full.log" 2>/dev/null  # every test's output
+# c_api_linkage_installed builds an uninstrumented C consumer against the installed
+# sanitized library: the runtime is preloaded, for cmake, cc and nm too, so leak detection
+# is off (those tools do not free at exit; the consumer makes c_api_dump's calls, checked above).
+(cd "$build" && LD_PRELOAD="$preload" ASAN_OPTIONS="$asan:detect_leaks=0" \
+  ctest --output-on-failure -R '^c_api_linkage_installed$') 2>&1 | tee "$logs/ctest-install.log"
+install_rc=$?
+cat "$build/Testing/Temporary/LastTest.log" >> "$logs/ctest-full.log" 2>/dev/null
+ctest_s=$((SECONDS - t0))
+if reports "$logs/ctest-full.log"; then [ $ctest_rc -ne 0 ] || ctest_rc=1; fi
+
+# ---- pytest against the sanitized library.  Leak detection off: CPython keeps pointers
+# to malloc'd objects in mmap'd pymalloc arenas that LSan does not scan, so live
+# interpreter objects are reported as leaks, and the preload reaches the pyenv shim and
+# the tests' cc runs too; arcus's own leaks are the ctest run's job.  --capture=sys: a
+# sanitizer writes to fd 2 and exits, which pytest's default fd capture would swallow.
+t0=$SECONDS
+LD_PRELOAD="$preload" ASAN_OPTIONS="$asan:detect_leaks=0" ARCUS_LIBRARY="$build/libarcus.so" \
+  python3 -m pytest -v --capture=sys -p no:cacheprovider tests/python 2>&1 | tee "$logs/pytest.log"
+pytest_rc=$?
+pytest_s=$((SECONDS - t0))
+if reports "$logs/pytest.log"; then [ $pytest_rc -ne 0 ] || pytest_rc=1; fi
+
+echo "sanitize: build ${build_s}s, ctest ${ctest_s}s (exit $ctest_rc; install test exit $install_rc)," \
+     "pytest ${pytest_s}s (exit $pytest_rc).  Logs: $logs (ctest-full.log: every test's output)"
+[ $ctest_rc -eq 0 ] && [ $install_rc -eq 0 ] && [ $pytest_rc -eq 0 ]
