@@ -17,6 +17,10 @@ extern "C" {
 #endif
 
 #define ARCUS_EARTH_RADIUS 6371000.0 /* metres */
+/* Vacuum wavelengths (nm) Ciddor's dispersion of air covers: the range of per-ray and
+ * atmosphere wavelengths. */
+#define ARCUS_MIN_WAVELENGTH 300.0
+#define ARCUS_MAX_WAVELENGTH 1690.0
 
 /* ---- index-of-refraction fields -------------------------------------------------
  * Each field gives n and its gradient at any point; analytic where the form allows

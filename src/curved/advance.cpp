@@ -43,8 +43,9 @@ bool representable(double v, bool single) {
   return std::isfinite(f) && (v == 0 || f != 0);
 }
 
-void validate(const arcus_advance_params& p, const arcus_field_desc_d& field, const std::vector<double>& data,
-              const arcus_device_info& device) {
+}  // namespace
+
+void check_advance_params(const arcus_advance_params& p, bool straight) {
   // Enumerations arrive as int32_t members: checked before any use as an enum.
   require(p.method >= ARCUS_METHOD_EULER && p.method <= ARCUS_METHOD_DP45,
           "params.method = " + std::to_string(p.method) + " is not an arcus_method");
@@ -57,7 +58,6 @@ void validate(const arcus_advance_params& p, const arcus_field_desc_d& field, co
   };
   finite(p.length, "length");
   require(p.length > 0, "params.length = " + number(p.length) + " must be positive");
-  const bool straight = field.kind == ARCUS_KIND_CONSTANT;
   if (p.method == ARCUS_METHOD_DP45 && !straight) {
     finite(p.rtol, "rtol");
     finite(p.atol, "atol");
@@ -88,6 +88,14 @@ void validate(const arcus_advance_params& p, const arcus_field_desc_d& field, co
   require(p.record_path == 0 || p.record_path == 1, "params.record_path must be 0 or 1");
   require(p.path_capacity <= static_cast<uint32_t>(std::numeric_limits<int32_t>::max()),
           "params.path_capacity must be at most 2^31 - 1");
+}
+
+namespace {
+
+void validate(const arcus_advance_params& p, const arcus_field_desc_d& field, const std::vector<double>& data,
+              const arcus_device_info& device) {
+  check_advance_params(p, field.kind == ARCUS_KIND_CONSTANT);
+  const bool single = p.precision == ARCUS_PRECISION_FLOAT;
   if (!single && !device.fp64)
     fail(ARCUS_ERROR_UNSUPPORTED, std::string("device '") + device.name +
                                       "' has no double precision (cl_khr_fp64); use ARCUS_PRECISION_FLOAT");

@@ -43,6 +43,10 @@ struct FixedSteps {
 template <class Real>
 FixedSteps fixed_steps(double length, double step, uint64_t max_steps);
 
+// Checks the parameters on their own (no field, no device): throws INVALID_ARGUMENT
+// naming the member.  `straight`: a constant field, which needs no integrator settings.
+void check_advance_params(const arcus_advance_params& params, bool straight);
+
 // What a job compiles and how it is laid out.
 struct Plan {
   arcus_features features = 0;

@@ -59,6 +59,12 @@ FieldBuild build_field(const MediumDesc& m) {
 // objects are created under it.  A bad medium is reported with the scene file's name.
 arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::Locked& locked) {
   SceneDesc desc = parse_scene_file(path);
+  // The settings are checked now, so a bad scene fails where it is read, naming its file.
+  try {
+    check_advance_params(desc.params, desc.medium.kind == ARCUS_FIELD_CONSTANT);
+  } catch (const Error& e) {
+    fail(e.status(), path + ": $.integrator: " + e.what());
+  }
   FieldBuild built;
   try {
     built = build_field(desc.medium);

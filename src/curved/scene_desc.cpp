@@ -152,7 +152,9 @@ void parse_medium(const Node& m, const std::string& base_dir, MediumDesc* d) {
 
 double wavelength(const Node& node) {
   const double w = node.number();
-  if (!(w > 0)) node.fail("expected a wavelength in nm, greater than 0, got " + number(w));
+  // Ciddor's dispersion covers these; arcus_advance would flag the ray otherwise.
+  if (!(w >= ARCUS_MIN_WAVELENGTH && w <= ARCUS_MAX_WAVELENGTH))
+    node.fail("expected a wavelength in nm within 300..1690, got " + number(w));
   return w;
 }
 

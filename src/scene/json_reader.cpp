@@ -227,7 +227,8 @@ Document Document::from_text(const std::string& text, const std::string& file_na
               "number out of range (the largest magnitude is " + number(DBL_MAX) + "): " + detail(e));
     fail_at(file_name, guard.path(), "not valid JSON: " + detail(e));
   } catch (const Json::exception& e) {
-    fail_at(file_name, guard.path(), "not valid JSON: " + detail(e));
+    // The path is where the parser had got to, which may lie before the error.
+    fail(ARCUS_ERROR_INVALID_ARGUMENT, file_name + ": not valid JSON (after " + guard.path() + "): " + detail(e));
   }
   return Document(std::move(impl));
 }

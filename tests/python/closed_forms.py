@@ -1,4 +1,5 @@
-"""Closed-form ray paths the tests compare the integrators with."""
+"""Independent references the tests compare arcus with: closed-form ray paths, and
+Ciddor's refractivity of air, written out here rather than taken from the library."""
 
 import numpy as np
 
@@ -43,3 +44,13 @@ def catenary_height(n0, g, origin, direction, x):
     u0 = np.arcsinh(n_start * d[1] / A)
     C = origin[0] - A * u0 / g
     return (A * np.cosh((np.asarray(x) - C) * g / A) - n0) / g
+
+
+def ciddor(nm):
+    """n - 1 of standard dry air (288.15 K, 101325 Pa) at a vacuum wavelength in nm.
+
+    Ciddor (1996), eq. 1: (n - 1) 1e8 = 5792105 / (238.0185 - s2) + 167917 / (57.362 - s2),
+    s2 = (1 / lambda[um])^2.
+    """
+    s2 = (1000.0 / np.asarray(nm, dtype=float)) ** 2
+    return 1e-8 * (5792105.0 / (238.0185 - s2) + 167917.0 / (57.362 - s2))

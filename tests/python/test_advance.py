@@ -1,4 +1,5 @@
-"""Context.advance against closed forms: straight lines, catenaries, lenses, boxes."""
+"""Context.advance against closed forms: straight lines, catenaries, lenses, boxes, and
+an independent numpy integrator; why rays fail."""
 
 import numpy as np
 import pytest
@@ -62,6 +63,18 @@ def test_dp45_catenary(ctx):
     assert direction_error < dp45_bound(result.steps.max(), rtol, atol, 12.0)
     np.testing.assert_allclose(np.linalg.norm(result.directions, axis=1), 1.0, rtol=0, atol=1e-15)
     assert result.stats["total_seconds"] > 0 and result.stats["lanes"] >= 1
+
+
+def test_dp45_catenary_of_the_c_api_dump_job(ctx):
+    """The job test_determinism.py runs through C and Python, against the closed form."""
+    origins, directions = fan(8)
+    rtol, atol, length = 1e-9, 1e-12, 100.0
+    result = ctx.advance(LINEAR, origins, directions, method="dp45", rtol=rtol, atol=atol, length=length)
+    assert np.all(result.status == arcus.RAY_DONE) and np.all(result.failures == arcus.FAILURE_NONE)
+    position_error, direction_error = catenary_error(result, origins, directions, length)
+    # |r| <= 100 over these paths.
+    assert position_error < dp45_bound(result.steps.max(), rtol, atol, 100.0)
+    assert direction_error < dp45_bound(result.steps.max(), rtol, atol, 100.0)
 
 
 def test_tighter_tolerance_is_more_accurate(ctx):
@@ -153,6 +166,43 @@ def test_dp45_gives_up_when_the_tolerance_cannot_be_met(ctx):
     result = ctx.advance(LINEAR, origins, directions, step=5.0, rtol=1e-14, atol=1e-16, max_rejections=1,
                          length=10.0)
     assert np.all(result.status == arcus.RAY_FAILED)
+    assert np.all(result.failures == arcus.FAILURE_TOLERANCE) and result.failures.dtype == np.int32
+    assert set(result.failure_names) == {"TOLERANCE"}
+    # It stopped at the last state known good: still at its origin, nothing travelled.
+    assert np.all(result.lengths < 10.0)
+
+
+@pytest.mark.parametrize("job", [dict(method="dp45"), dict(method="rk4", step=0.3), dict(method="euler", step=0.01),
+                                 dict(method="rk2", step=0.3, box=((-10, -10, -10), (10, 10, 10))),
+                                 dict(method="dp45", precision="float", rtol=1e-6, atol=1e-9)],
+                         ids=["dp45", "rk4", "euler", "rk2-box", "dp45-float"])
+def test_ray_reaching_n_zero_fails_with_that_reason(ctx, job):
+    """n = 1 - y: a ray going straight up reaches n = 0 at y = 1 (v = n = 1 - s there)."""
+    field = Linear(1.0, (0.0, -1.0, 0.0))
+    origins, directions = [[0, 0, 0], [0, 0, 0]], [[0, 1, 0], [1, 1, 0]]
+    result = ctx.advance(field, origins, directions, length=2.0, **job)
+    assert list(result.status) == [arcus.RAY_FAILED, arcus.RAY_DONE]
+    assert list(result.failures) == [arcus.FAILURE_INDEX_NOT_POSITIVE, arcus.FAILURE_NONE]
+    assert result.failure_names == ["INDEX_NOT_POSITIVE", "NONE"]
+    # The failed ray ends at a state before n = 0, finite.
+    assert result.positions[0, 1] <= 1.0 and result.lengths[0] <= 1.0
+    assert np.all(np.isfinite(result.positions[0])) and np.all(np.isfinite(result.directions[0]))
+    if job["method"] == "dp45":
+        # The ray at 45 degrees turns where n = cos 45 degrees, on the catenary of n = 1 - y.
+        # (The fixed steps are coarse, to take a step's stages across y = 1: only dp45
+        # meets a tolerance worth checking.)
+        end, _ = catenary(1.0, -1.0, [[0, 0, 0]], [[1, 1, 0]], 2.0)
+        tolerance = 1e-4 if job.get("precision") == "float" else 1e-8
+        np.testing.assert_allclose(result.positions[1], end[0], rtol=0, atol=tolerance)
+
+
+def test_overflowing_state_fails_as_not_finite(ctx):
+    """n = 1 + 1e308 (x + y): n and v overflow within any step."""
+    field = Linear(1.0, (1e308, 1e308, 0.0))
+    for job in (dict(method="dp45"), dict(method="rk4", step=0.1)):
+        result = ctx.advance(field, [0, 0, 0], [1, 1, 0], length=1.0, **job)
+        assert result.status[0] == arcus.RAY_FAILED, job
+        assert result.failures[0] == arcus.FAILURE_NOT_FINITE, job
 
 
 # ---- boxes ----------------------------------------------------------------------------------
@@ -230,3 +280,48 @@ def test_horizontal_ray_in_flat_atmosphere_follows_local_catenary(ctx):
     # The gradient changes by ~1e-5 relative over the 5 cm drop; the catenary with the
     # starting gradient is good to well under a micrometre.
     assert abs(result.positions[0, 1] - end[0, 1]) < 1e-6
+
+
+# ---- an independent integrator ------------------------------------------------------------
+
+
+def python_rk4(ctx, field, origins, directions, step, count):
+    """The kernel's RK4 in numpy, on n and grad n from arcus_field_evaluate.
+
+    State (r, v = n dr/ds); dr/ds = v / n, dv/ds = grad n.
+    """
+
+    def derivative(r, v):
+        n, gradient = field.evaluate(ctx, r)
+        return v / n[:, None], gradient
+
+    r = np.array(origins, dtype=float)
+    n, _ = field.evaluate(ctx, r)
+    v = n[:, None] * directions / np.linalg.norm(directions, axis=1, keepdims=True)
+    for _ in range(count):
+        k1 = derivative(r, v)
+        k2 = derivative(r + step / 2 * k1[0], v + step / 2 * k1[1])
+        k3 = derivative(r + step / 2 * k2[0], v + step / 2 * k2[1])
+        k4 = derivative(r + step * k3[0], v + step * k3[1])
+        r = r + step / 6 * (k1[0] + 2 * k2[0] + 2 * k3[0] + k4[0])
+        v = v + step / 6 * (k1[1] + 2 * k2[1] + 2 * k3[1] + k4[1])
+    return r, v / np.linalg.norm(v, axis=1, keepdims=True)
+
+
+def test_kernel_rk4_matches_numpy_rk4_on_evaluated_field(ctx):
+    """The kernel's RK4 against RK4 written out here in numpy, on the same field.
+
+    The field (n, grad n) comes from arcus_field_evaluate, which test_fields.py checks
+    against the Luneburg formula; the integration scheme is independent of the kernel's.
+    """
+    field = Luneburg((0.0, 0.0, 0.0), 1.0)
+    origins = np.array([[-0.8, 0.1 * i - 0.3, 0.05 * i] for i in range(6)])
+    directions = np.tile([1.0, 0.1, 0.0], (6, 1))
+    step, count = 0.05, 24
+    result = ctx.advance(field, origins, directions, method="rk4", step=step, length=step * count)
+    assert np.all(result.steps == count)
+    r, d = python_rk4(ctx, field, origins, directions, step, count)
+    # Only rounding differs (the kernel fuses multiply-adds): a few ulps per step.
+    np.testing.assert_allclose(result.positions, r, rtol=0, atol=1e-13)
+    np.testing.assert_allclose(result.directions, d, rtol=0, atol=1e-13)
+    assert np.abs(result.directions - directions / np.linalg.norm(directions, axis=1, keepdims=True)).max() > 0.1

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import arcus
-from arcus.media import Linear
+from arcus.media import Constant, Grid, Linear, StandardAtmosphere
 from closed_forms import fan
 
 LINEAR = Linear(1.0, (0.0, 0.1, 0.0))
@@ -102,3 +102,88 @@ def test_single_ray_and_list_input(ctx):
 def test_no_rays_is_an_empty_result(ctx):
     result = ctx.advance(LINEAR, np.empty((0, 3)), np.empty((0, 3)), record_path=True)
     assert len(result) == 0 and result.positions.shape == (0, 3) and result.paths == []
+
+
+# ---- strictness: no silent coercions (regressions from a reliability probe) -------------
+
+
+@pytest.mark.parametrize("value", ["no", "yes", "False", "", 1, 0, 1.0, [True]])
+def test_record_path_takes_only_bools(ctx, value):
+    """record_path='no' used to turn recording on (bool('no') is True)."""
+    with pytest.raises(arcus.ArgumentError, match="record_path must be True or False"):
+        ctx.advance(LINEAR, [0, 0, 0], [1, 0, 0], record_path=value)
+
+
+@pytest.mark.parametrize("value, recorded", [(True, True), (False, False), (np.True_, True), (np.False_, False)])
+def test_record_path_bools_and_numpy_bools(ctx, value, recorded):
+    result = ctx.advance(LINEAR, [0, 0, 0], [1, 0, 0], record_path=value)
+    assert (result.paths is not None) == recorded and ("RECORD_PATH" in result.features) == recorded
+
+
+def test_spherical_takes_only_bools(ctx):
+    for value in ("no", "False", 0, 1, None):
+        with pytest.raises(arcus.ArgumentError, match="spherical must be True or False"):
+            StandardAtmosphere(spherical=value)
+    assert StandardAtmosphere(spherical=np.True_).spherical is True
+    # and the flag reaches the library: a spherical atmosphere has sea-level air at
+    # (0, EARTH_RADIUS, 0), where a flat one (height = y) has none.
+    n_flat, _ = StandardAtmosphere(spherical=False).evaluate(ctx, [0.0, 0.0, 0.0])
+    n_sphere, _ = StandardAtmosphere(spherical=True).evaluate(ctx, [0.0, arcus.EARTH_RADIUS, 0.0])
+    assert n_flat[0] == pytest.approx(n_sphere[0], abs=1e-12)
+
+
+@pytest.mark.parametrize("path", ["grid.raw\0.txt", b"grid.raw\0", 7, None],
+                         ids=["nul-str", "nul-bytes", "int", "none"])
+def test_grid_file_path_is_checked_when_described(path):
+    """A NUL ends the C string: the library would read another, shorter path."""
+    with pytest.raises(arcus.ArgumentError, match="path"):
+        Grid.from_file(path, (2, 2, 2), (0, 0, 0), (1, 1, 1))
+
+
+def test_big_endian_grid_dtype_is_refused():
+    """The file is little-endian; '>f4' names float32 too and would be misread."""
+    with pytest.raises(arcus.ArgumentError, match="little-endian"):
+        Grid.from_file("x.raw", (2, 2, 2), (0, 0, 0), (1, 1, 1), dtype=">f4")
+    assert Grid.from_file("x.raw", (2, 2, 2), (0, 0, 0), (1, 1, 1), dtype="<f8").dtype == "float64"
+
+
+@pytest.mark.parametrize(
+    "options, message",
+    [(dict(rtol="1e-9"), "rtol must be a real number"), (dict(length=True), "length must be a real number"),
+     (dict(max_steps=True), "max_steps must be an integer"), (dict(max_steps="5"), "max_steps must be an integer"),
+     (dict(max_steps=float("inf")), "max_steps must be an integer"), (dict(method=3), "method must be one of"),
+     (dict(box=("abc", "def")), "box min"), (dict(box="ab"), "box must be"),
+     (dict(box=((0, 0, 0), (1, 1, 1j))), "box max")],
+)
+def test_numbers_are_never_read_from_strings_or_bools(ctx, monkeypatch, options, message):
+    def never(*args):
+        raise AssertionError("arcus_advance was called")
+
+    monkeypatch.setattr(arcus._lib.lib, "arcus_advance", never)
+    with pytest.raises(arcus.ArgumentError, match=message):
+        ctx.advance(LINEAR, [0, 0, 0], [1, 0, 0], **options)
+
+
+@pytest.mark.parametrize(
+    "make, message",
+    [(lambda: Constant("1.5"), "n must be a real number"), (lambda: Linear(1.0, ["0", "1", "0"]), "gradient"),
+     (lambda: Linear(True, (0, 1, 0)), "n0 must be a real number"),
+     (lambda: Grid(np.full((2, 2, 2), "1.0"), (0, 0, 0), (1, 1, 1)), "values"),
+     (lambda: StandardAtmosphere(inversions=[("0", 10, 5)]), r"inversions\[0\].base")],
+    ids=["constant-str", "linear-str-vector", "linear-bool", "grid-str", "inversion-str"],
+)
+def test_field_parameters_are_never_read_from_strings_or_bools(make, message):
+    with pytest.raises(arcus.ArgumentError, match=message):
+        make()
+
+
+def test_rays_are_never_read_from_strings(ctx):
+    with pytest.raises(arcus.ArgumentError, match="origins must be an array of real numbers"):
+        ctx.advance(LINEAR, ["0", "0", "0"], [1, 0, 0])
+    with pytest.raises(arcus.ArgumentError, match="directions must be an array of real numbers"):
+        ctx.advance(LINEAR, [0, 0, 0], [True, False, False])
+
+
+def test_error_callback_must_be_callable(ctx):
+    with pytest.raises(arcus.ArgumentError, match="callback must be a callable"):
+        ctx.set_error_callback("print")

@@ -6,6 +6,7 @@ import pytest
 import arcus
 from arcus.media import (Constant, FishEye, Grid, GridFile, Inversion, Linear, LinearN2, Luneburg,
                          StandardAtmosphere)
+from closed_forms import ciddor
 
 RNG = np.random.default_rng(7)
 POINTS = RNG.uniform(-1.5, 1.5, size=(64, 3))
@@ -157,6 +158,9 @@ def test_grid_from_file_matches_in_memory_grid(ctx, tmp_path, dtype):
     n_mem, g_mem = Grid(stored.astype(np.float64), ORIGIN, SPACING).evaluate(ctx, points)
     np.testing.assert_array_equal(n_file, n_mem)
     np.testing.assert_array_equal(g_file, g_mem)
+    # and both are the function sampled, to the file's rounding (n ~ 1.2: float32 2^-24).
+    rounding = 1.2 * 2.0**-24 if dtype == "float32" else 1e-14
+    np.testing.assert_allclose(n_file, trilinear_function(points), rtol=0, atol=2 * rounding)
 
 
 def test_grid_from_missing_file_is_an_io_error(ctx, tmp_path):
@@ -231,10 +235,13 @@ def test_flat_atmosphere_sea_level_and_profile(ctx):
     assert 8e3 < scale_height < 12e3
 
 
-def test_shorter_wavelength_refracts_more(ctx):
-    blue, _ = StandardAtmosphere(wavelength=450.0).evaluate(ctx, [0.0, 0.0, 0.0])
-    red, _ = StandardAtmosphere(wavelength=650.0).evaluate(ctx, [0.0, 0.0, 0.0])
+def test_shorter_wavelength_refracts_more_as_ciddor_says(ctx):
+    blue, _ = StandardAtmosphere(wavelength=450.0).evaluate(ctx, [0.0, 1000.0, 0.0])
+    red, _ = StandardAtmosphere(wavelength=650.0).evaluate(ctx, [0.0, 1000.0, 0.0])
     assert blue[0] > red[0]
+    # Density, CO2 and compressibility scale n - 1 alike at every wavelength: the ratio
+    # is that of Ciddor's dispersion formula alone (closed_forms.ciddor).
+    assert (blue[0] - 1) / (red[0] - 1) == pytest.approx(ciddor(450.0) / ciddor(650.0), rel=1e-9)
 
 
 def test_inversion_layer(ctx):

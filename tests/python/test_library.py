@@ -15,7 +15,7 @@ import sys
 import pytest
 
 import arcus
-from arcus import _lib
+from arcus import _constants, _lib
 
 
 @pytest.fixture(scope="module")
@@ -57,6 +57,11 @@ def test_enums_match_header(header):
     rays = enum_values(header, "arcus_ray_status", "ARCUS_RAY_")
     assert rays == {name: getattr(arcus, "RAY_" + name) for name in rays}
     assert {v: k for k, v in rays.items()} == arcus.RAY_STATUS_NAMES
+    failures = enum_values(header, "arcus_ray_failure", "ARCUS_FAILURE_")
+    assert failures == {name: getattr(arcus, "FAILURE_" + name) for name in failures}
+    assert {v: k for k, v in failures.items()} == arcus.FAILURE_NAMES and len(failures) == 4
+    origins = enum_values(header, "arcus_program_origin", "ARCUS_PROGRAM_")
+    assert sorted(origins.values()) == sorted(_constants.PROGRAM_ORIGINS)
     methods = enum_values(header, "arcus_method", "ARCUS_METHOD_")
     assert {k.lower(): v for k, v in methods.items()} == arcus.METHODS
     precisions = enum_values(header, "arcus_precision", "ARCUS_PRECISION_")
@@ -72,6 +77,17 @@ def test_status_names_come_from_library(header):
     assert len(statuses) == 11
     for name, code in statuses.items():
         assert _lib.status_name(code) == "ARCUS_" + name
+    # The statuses the binding itself tells apart.
+    assert (statuses["SUCCESS"], statuses["ERROR_UNSUPPORTED"]) == (_constants.SUCCESS, _constants.ERROR_UNSUPPORTED)
+    assert [statuses["ERROR_" + name] for name in ("INVALID_RAYS", "PATH_OVERFLOW", "CANCELLED")] == list(
+        _constants.PARTIAL_RESULTS)
+
+
+def test_every_api_function_has_a_prototype(header):
+    """The binding covers the whole C API: every ARCUS_API function has its ctypes prototype."""
+    declared = set(re.findall(r"ARCUS_API\s+[\w\s*]+?\b(arcus_\w+)\s*\(", header))
+    assert len(declared) > 40 and "arcus_scene_advance" in declared
+    assert declared == set(_lib._PROTOTYPES)
 
 
 def test_advance_params_defaults():

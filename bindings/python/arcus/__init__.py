@@ -8,6 +8,8 @@ A thin ctypes layer over the C library libarcus with numpy in and out::
     with arcus.Context() as ctx:
         result = ctx.advance(Linear(1.0, (0, 0.1, 0)), origins, directions, length=10.0)
         print(result.positions, result.status)
+        scene = ctx.load_scene("scenes/mirage.json")   # read by the library
+        print(scene.advance().status_names)
 
 The shared library is looked up, in order, at the ARCUS_LIBRARY environment variable
 (a path), in a build directory of the source tree this package lives in
@@ -21,6 +23,11 @@ from . import media
 from ._constants import (
     DEVICE_DEFAULT,
     EARTH_RADIUS,
+    FAILURE_INDEX_NOT_POSITIVE,
+    FAILURE_NAMES,
+    FAILURE_NONE,
+    FAILURE_NOT_FINITE,
+    FAILURE_TOLERANCE,
     FIELD_KINDS,
     METHODS,
     PRECISIONS,
@@ -37,7 +44,7 @@ from ._lib import FEATURES, feature_names
 from ._lib import check as _check
 from ._lib import lib as _libarcus
 from ._lib import library_path  # the path (or soname) libarcus was loaded from
-from .context import AdvanceResult, Context, DeviceInfo, devices
+from .context import AdvanceResult, Context, DeviceInfo, Scene, SceneField, devices
 
 
 def _version():
@@ -57,6 +64,11 @@ __all__ = [
     "DeviceInfo",
     "EARTH_RADIUS",
     "Error",
+    "FAILURE_INDEX_NOT_POSITIVE",
+    "FAILURE_NAMES",
+    "FAILURE_NONE",
+    "FAILURE_NOT_FINITE",
+    "FAILURE_TOLERANCE",
     "FEATURES",
     "FIELD_KINDS",
     "LibraryNotFoundError",
@@ -69,6 +81,8 @@ __all__ = [
     "RAY_LEFT_BOX",
     "RAY_STATUS_NAMES",
     "RAY_STEP_LIMIT",
+    "Scene",
+    "SceneField",
     "devices",
     "feature_names",
     "library_path",

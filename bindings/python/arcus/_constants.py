@@ -19,7 +19,7 @@ RAY_DONE = 0
 RAY_LEFT_BOX = 1
 #: ``max_steps`` accepted steps were taken before reaching the length.
 RAY_STEP_LIMIT = 2
-#: DP45 could not meet the tolerance, or the state became non-finite.
+#: The ray failed; AdvanceResult.failures says why (FAILURE_*).
 RAY_FAILED = 3
 #: NaN/Inf origin or direction, a zero direction, or a wavelength outside 300..1690 nm;
 #: the ray was not traced.
@@ -35,6 +35,24 @@ RAY_STATUS_NAMES = {
     RAY_FAILED: "FAILED",
     RAY_INVALID_INPUT: "INVALID_INPUT",
     RAY_CANCELLED: "CANCELLED",
+}
+
+# Why a ray failed (arcus_ray_failure, AdvanceResult.failures).
+#: The ray did not fail.
+FAILURE_NONE = 0
+#: dp45: no step >= min_step met the tolerance within max_rejections tries.
+FAILURE_TOLERANCE = 1
+#: The state became NaN or infinite (overflow).
+FAILURE_NOT_FINITE = 2
+#: The ray reached a point where n <= 0.
+FAILURE_INDEX_NOT_POSITIVE = 3
+
+#: Failure code -> name ("NONE", "TOLERANCE", ...).
+FAILURE_NAMES = {
+    FAILURE_NONE: "NONE",
+    FAILURE_TOLERANCE: "TOLERANCE",
+    FAILURE_NOT_FINITE: "NOT_FINITE",
+    FAILURE_INDEX_NOT_POSITIVE: "INDEX_NOT_POSITIVE",
 }
 
 #: Integration method name -> arcus_method value.  ``"dp45"`` is adaptive
@@ -55,10 +73,16 @@ FIELD_KINDS = {
     6: "GRID",
 }
 
+#: arcus_program_origin value -> AdvanceResult.stats["program_origin"].
+PROGRAM_ORIGINS = {0: "built", 1: "memory cache", 2: "disk cache"}
+
 # arcus_status values the binding has to tell apart; every other failure is simply
 # raised with the library's name for it.
 SUCCESS = 0
+ERROR_UNSUPPORTED = 4
+#: The job exists and holds every ray's result; the error carries it (Error.result).
 ERROR_INVALID_RAYS = 8
 ERROR_PATH_OVERFLOW = 9
 ERROR_CANCELLED = 10
+PARTIAL_RESULTS = (ERROR_INVALID_RAYS, ERROR_PATH_OVERFLOW, ERROR_CANCELLED)
 

@@ -23,9 +23,10 @@ class Error(Exception):
         status: its name as the library spells it, e.g. ``"ARCUS_ERROR_INVALID_ARGUMENT"``.
         message: what went wrong and which argument, as the library reported it (or,
             for checks done in Python before calling the library, as the binding did).
-        result: for ``ARCUS_ERROR_INVALID_RAYS`` and ``ARCUS_ERROR_PATH_OVERFLOW`` the
-            library still produced every ray's result; it is attached here as an
-            :class:`arcus.AdvanceResult` so nothing is lost.  ``None`` otherwise.
+        result: for ``ARCUS_ERROR_INVALID_RAYS``, ``ARCUS_ERROR_PATH_OVERFLOW`` and
+            ``ARCUS_ERROR_CANCELLED`` the library still produced every ray's result (the
+            flagged rays marked, the unfinished ones ``RAY_CANCELLED``); it is attached
+            here as an :class:`arcus.AdvanceResult` so nothing is lost.  ``None`` otherwise.
     """
 
     def __init__(self, code, message, status=None, result=None):

@@ -56,6 +56,10 @@ class AtmosphereDescStruct(ctypes.Structure):
     ]
 
 
+#: int32_t (*arcus_progress_callback)(void* user, double fraction)
+PROGRESS_CALLBACK = ctypes.CFUNCTYPE(c_int32, c_void_p, c_double)
+
+
 class AdvanceParamsStruct(ctypes.Structure):
     """arcus_advance_params."""
 
@@ -75,7 +79,7 @@ class AdvanceParamsStruct(ctypes.Structure):
         ("box_max", c_double * 3),
         ("record_path", c_int32),
         ("path_capacity", c_uint32),
-        ("progress", c_void_p),  # arcus_progress_callback (set as a PROGRESS_CALLBACK)
+        ("progress", PROGRESS_CALLBACK),  # NULL: PROGRESS_CALLBACK()
         ("progress_user", c_void_p),
     ]
 
@@ -96,9 +100,6 @@ class JobStatsStruct(ctypes.Structure):
 
 #: void (*arcus_error_callback)(void* user, arcus_status status, const char* message)
 ERROR_CALLBACK = ctypes.CFUNCTYPE(None, c_void_p, c_int, c_char_p)
-
-#: int32_t (*arcus_progress_callback)(void* user, double fraction)
-PROGRESS_CALLBACK = ctypes.CFUNCTYPE(c_int32, c_void_p, c_double)
 
 # ---- prototypes -----------------------------------------------------------------------
 # Handles are opaque, so c_void_p; out-handles are POINTER(c_void_p).
@@ -152,6 +153,18 @@ _PROTOTYPES = {
     "arcus_job_get_failures": (_status, [_handle, POINTER(c_int32)]),
     "arcus_job_get_features": (_status, [_handle, POINTER(c_uint64)]),
     "arcus_job_get_stats": (_status, [_handle, POINTER(JobStatsStruct)]),
+    "arcus_scene_load": (_status, [_handle, c_char_p, _out_handle]),
+    "arcus_scene_retain": (_status, [_handle]),
+    "arcus_scene_release": (_status, [_handle]),
+    "arcus_scene_get_name": (_status, [_handle, POINTER(c_char_p)]),
+    "arcus_scene_get_description": (_status, [_handle, POINTER(c_char_p)]),
+    "arcus_scene_get_document": (_status, [_handle, POINTER(c_char_p)]),
+    "arcus_scene_get_engine": (_status, [_handle, POINTER(c_char_p)]),
+    "arcus_scene_get_field": (_status, [_handle, _out_handle]),
+    "arcus_scene_get_advance_params": (_status, [_handle, POINTER(AdvanceParamsStruct)]),
+    "arcus_scene_get_ray_count": (_status, [_handle, POINTER(c_size_t)]),
+    "arcus_scene_get_rays": (_status, [_handle, _dvec, _dvec, _dvec, POINTER(c_int32)]),
+    "arcus_scene_advance": (_status, [_handle, PROGRESS_CALLBACK, c_void_p, _out_handle]),
 }
 
 # ---- finding the library --------------------------------------------------------------

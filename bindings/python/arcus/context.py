@@ -1,21 +1,22 @@
-"""Devices, contexts and advancing rays."""
+"""Devices, contexts, advancing rays and loading scenes."""
 
+import collections
 import numbers
 import threading
 import weakref
-from ctypes import byref, c_int32, c_size_t, c_uint32, c_uint64, c_void_p
+from ctypes import byref, c_char_p, c_int32, c_size_t, c_uint32, c_uint64, c_void_p
 from dataclasses import dataclass
 
 import numpy as np
 
 from . import _constants as C
 from . import _lib
-from ._args import to_choice, to_float, to_int, to_points, to_vec3
+from ._args import to_bool, to_choice, to_float, to_int, to_path, to_per_ray, to_points, to_vec3
 from ._errors import DEVICE_NOT_FOUND, ArgumentError, Error, error_for
 from ._lib import lib
 from .media import Field
 
-__all__ = ["DeviceInfo", "devices", "Context", "AdvanceResult"]
+__all__ = ["DeviceInfo", "devices", "Context", "AdvanceResult", "Scene", "SceneField"]
 
 
 # ---- devices --------------------------------------------------------------------------
@@ -111,7 +112,7 @@ _PARAM_CONVERSIONS = {
     "max_rejections": lambda v: to_int(v, "max_rejections", 0, _UINT32_MAX),
     "max_steps": lambda v: to_int(v, "max_steps", 0, _UINT64_MAX),
     "path_capacity": lambda v: to_int(v, "path_capacity", 0, _UINT32_MAX),
-    "record_path": lambda v: int(bool(v)),
+    "record_path": lambda v: int(to_bool(v, "record_path")),
 }
 
 
@@ -123,6 +124,8 @@ def _advance_params(options):
         if value is None:
             continue
         if name == "box":
+            if isinstance(value, (str, bytes)):
+                raise ArgumentError("box must be (min, max), two 3-vectors, got %r" % (value,))
             try:
                 low, high = value
             except (TypeError, ValueError):
@@ -135,12 +138,40 @@ def _advance_params(options):
     return params
 
 
+_METHOD_NAMES = {value: name for name, value in C.METHODS.items()}
+_PRECISION_NAMES = {value: name for name, value in C.PRECISIONS.items()}
+
+
+def _advance_options(params):
+    """The keyword arguments of Context.advance that state ``params`` (no progress)."""
+    return {
+        "method": _METHOD_NAMES[params.method],
+        "precision": _PRECISION_NAMES[params.precision],
+        "length": params.length,
+        "step": params.step,
+        "rtol": params.rtol,
+        "atol": params.atol,
+        "min_step": params.min_step,
+        "max_step": params.max_step,
+        "max_rejections": int(params.max_rejections),
+        "max_steps": int(params.max_steps),
+        "box": (tuple(params.box_min), tuple(params.box_max)) if params.use_box else None,
+        "record_path": bool(params.record_path),
+        "path_capacity": int(params.path_capacity),
+    }
+
+
+def _check_progress(progress):
+    if progress is not None and not callable(progress):
+        raise ArgumentError("progress must be a callable (fraction -> cancel?) or None, got %r" % (progress,))
+
+
 # ---- results --------------------------------------------------------------------------
 
 
 @dataclass(eq=False)  # element-wise array comparison has no single truth value
 class AdvanceResult:
-    """Every ray's result of :meth:`Context.advance` (N rays).
+    """Every ray's result of :meth:`Context.advance` or :meth:`Scene.advance` (N rays).
 
     Attributes:
         positions: (N, 3) end positions.
@@ -148,10 +179,13 @@ class AdvanceResult:
         steps: (N,) uint64 accepted steps.
         status: (N,) int32 per-ray status (:data:`arcus.RAY_DONE`, ...).
         lengths: (N,) arc length travelled.
+        failures: (N,) int32 why each ``RAY_FAILED`` ray failed
+            (:data:`arcus.FAILURE_TOLERANCE`, ...); :data:`arcus.FAILURE_NONE` for the others.
         features: names of the kernel features the job compiled with, e.g.
-            ``{"DP45", "ANALYTIC_FIELD"}``; ``feature_bits`` is the raw bit mask.
+            ``{"DP45", "FIELD_LINEAR"}``; ``feature_bits`` is the raw bit mask.
         stats: timings and layout: build_seconds, kernel_seconds, total_seconds,
-            cache_hit (bool), lanes, groups.
+            program_origin ("built", "memory cache" or "disk cache"), launches (slices),
+            lanes, groups.
         paths: with ``record_path``, ray i's kept points as a (k_i, 3) array (views into
             ``path_points``); None otherwise.
         path_offsets: (N + 1,) uint64; ray i's points are
@@ -166,6 +200,7 @@ class AdvanceResult:
     steps: np.ndarray
     status: np.ndarray
     lengths: np.ndarray
+    failures: np.ndarray
     features: frozenset
     feature_bits: int
     stats: dict
@@ -182,13 +217,51 @@ class AdvanceResult:
         """Per-ray status as names ("DONE", "LEFT_BOX", ...)."""
         return [C.RAY_STATUS_NAMES.get(int(s), str(int(s))) for s in self.status]
 
+    @property
+    def failure_names(self):
+        """Per-ray failure reason as names ("NONE", "TOLERANCE", ...)."""
+        return [C.FAILURE_NAMES.get(int(f), str(int(f))) for f in self.failures]
+
     def __repr__(self):
         codes, counts = np.unique(self.status, return_counts=True)
         tally = ", ".join("%s: %d" % (C.RAY_STATUS_NAMES.get(int(c), c), n) for c, n in zip(codes, counts))
         return "AdvanceResult(%d rays {%s}, features=%s)" % (len(self), tally, " ".join(sorted(self.features)))
 
 
-# ---- context --------------------------------------------------------------------------
+# ---- releasing library objects ----------------------------------------------------------
+# A progress callback runs with its context's lock held by the library, and dropping the
+# last reference to an object of a context takes that lock: a release on the callback's
+# thread (the callback dropping a field, or the garbage collector running a finalizer
+# there) would deadlock.  So while a progress callback runs on a thread, releases made
+# on that thread wait in _deferred until the library call that ran the callback returns.
+
+_local = threading.local()  # .active: the _ContextStates whose progress callback runs on this thread
+_deferred = collections.deque()  # (function, args); deque appends and pops are atomic
+
+
+def _active():
+    active = getattr(_local, "active", None)
+    if active is None:
+        active = _local.active = []
+    return active
+
+
+def _release(function, *args):
+    if _active():
+        _deferred.append((function, args))
+    else:
+        function(*args)
+
+
+def _flush_deferred():
+    if _active():
+        return
+    while True:
+        try:
+            function, args = _deferred.popleft()
+        except IndexError:
+            return
+        function(*args)
 
 
 class _Handle:
@@ -202,7 +275,7 @@ class _Handle:
 
     def __init__(self, value, release):
         self.value = value
-        self._finalizer = weakref.finalize(self, release, value)
+        self._finalizer = weakref.finalize(self, _release, release, value)
 
     def release(self):
         self._finalizer()
@@ -216,6 +289,8 @@ class _ContextState:
         # Realised fields: Field description -> _Handle.  Weak keys: once a description
         # is gone nobody can ask for it again, so its library object is released.
         self.fields = weakref.WeakKeyDictionary()
+        # Scenes' and scene fields' _Handles, released with the context at the latest.
+        self.objects = weakref.WeakSet()
         self.callback = None  # the ctypes wrapper must outlive its registration
         self.lock = threading.Lock()
 
@@ -223,15 +298,18 @@ class _ContextState:
         if self.callback is not None:
             lib.arcus_context_set_error_callback(self.handle, _lib.ERROR_CALLBACK(), None)
             self.callback = None
-        for handle in list(self.fields.values()):
+        for handle in list(self.fields.values()) + list(self.objects):
             handle.release()
         self.fields.clear()
         lib.arcus_context_release(self.handle)
         self.handle = None
 
 
+# ---- context --------------------------------------------------------------------------
+
+
 class Context:
-    """An arcus context on one OpenCL device; realises fields and advances rays.
+    """An arcus context on one OpenCL device; realises fields, advances rays, loads scenes.
 
     Args:
         device: None for the default device (the ARCUS_DEVICE environment variable if
@@ -250,13 +328,14 @@ class Context:
         # No context exists yet, so a failure's message is the per-thread one.
         _lib.check(lib.arcus_context_create(index, byref(handle)))
         self._state = _ContextState(handle)
-        self._finalizer = weakref.finalize(self, self._state.release)
+        self._finalizer = weakref.finalize(self, _release, self._state.release)
         self._device = None
 
     # -- lifetime --
 
     def close(self):
-        """Releases the context and every field realised on it (idempotent)."""
+        """Releases the context, every field realised on it and its scenes (idempotent)."""
+        self._not_in_progress_callback()
         self._finalizer()
 
     @property
@@ -273,12 +352,20 @@ class Context:
     def __repr__(self):
         if self.closed:
             return "<arcus.Context (closed)>"
+        if self._device is None and self._state in _active():
+            return "<arcus.Context (running a job)>"
         return "<arcus.Context on %d: %s>" % (self.device.index, self.device.name)
+
+    def _not_in_progress_callback(self):
+        if self._state in _active():
+            raise ArgumentError("a progress callback must not call the arcus.Context running its job "
+                                "(the library holds the context's lock until the job returns)")
 
     @property
     def _handle(self):
         if self.closed:
             raise ArgumentError("this arcus.Context is closed")
+        self._not_in_progress_callback()
         return self._state.handle
 
     def _check(self, code):
@@ -306,6 +393,8 @@ class Context:
         It runs on the failing thread, inside the library call; exceptions it raises
         are printed and ignored (ctypes cannot propagate them through C).  None removes it.
         """
+        if callback is not None and not callable(callback):
+            raise ArgumentError("callback must be a callable (status, message) or None, got %r" % (callback,))
         if callback is None:
             wrapper = _lib.ERROR_CALLBACK()
         else:
@@ -321,8 +410,12 @@ class Context:
     def _field(self, medium):
         """The library handle of ``medium`` on this context, created on first use."""
         if not isinstance(medium, Field):
-            raise ArgumentError("field must be an arcus.media field (Constant, Linear, ...), got %r" % (medium,))
+            raise ArgumentError("field must be an arcus.media field (Constant, Linear, ...) or a Scene's field, "
+                                "got %r" % (medium,))
         ctx = self._handle
+        bound = medium._handle_on(self)  # a scene's field has its one handle
+        if bound is not None:
+            return bound
         with self._state.lock:
             handle = self._state.fields.get(medium)
             if handle is None:
@@ -341,8 +434,8 @@ class Context:
     def evaluate(self, medium, positions):
         """n and its gradient of ``medium`` at ``positions`` ((N, 3) or (3,)).
 
-        Host-side, double precision, the kernels' formulas (``arcus_field_evaluate``).
-        Returns ``(n, gradient)`` with shapes (N,) and (N, 3).
+        Host-side, double precision, the kernels' formulas (``arcus_field_evaluate``), at
+        the field's own wavelength.  Returns ``(n, gradient)`` with shapes (N,) and (N, 3).
         """
         points = to_points(positions, "positions")
         handle = self._field(medium)
@@ -353,20 +446,30 @@ class Context:
 
     # -- advancing rays --
 
-    def advance(self, field, origins, directions, *, method=None, step=None, rtol=None, atol=None, length=None,
-                record_path=None, precision=None, box=None, max_steps=None, min_step=None, max_step=None,
-                max_rejections=None, path_capacity=None):
+    def advance(self, field, origins, directions, *, wavelengths=None, progress=None, method=None, step=None,
+                rtol=None, atol=None, length=None, record_path=None, precision=None, box=None, max_steps=None,
+                min_step=None, max_step=None, max_rejections=None, path_capacity=None):
         """Advances rays through ``field`` along the ray equation d/ds(n dr/ds) = ∇n.
 
         Args:
-            field: an :mod:`arcus.media` field.
+            field: an :mod:`arcus.media` field, or the ``field`` of a :class:`Scene`
+                loaded on this context.
             origins, directions: (N, 3) arrays (or one (3,) ray); directions need not be
                 unit length.
+            wavelengths: per-ray vacuum wavelengths in nm, an (N,) array or one number
+                for all.  A dispersive field (the atmosphere) evaluates n at each ray's
+                wavelength (300..1690 nm; a ray outside is RAY_INVALID_INPUT); other
+                fields ignore them.  None: the field's own wavelength.
+            progress: ``progress(fraction)``, called after each slice of a long job with
+                the fraction done (0..1); a true return value cancels the job.  It runs
+                while the library holds this context's lock: it must not call this
+                context (that raises ArgumentError).  An exception it raises cancels the
+                job and is re-raised here.
             method: "dp45" (adaptive Dormand-Prince 5(4)), "rk4", "rk2" or "euler".
             step: the fixed step; for dp45 the initial step (0: automatic).
             rtol, atol: dp45 tolerances per step (> 0).
             length: arc length to advance, metres (> 0).
-            record_path: keep every point of every path.
+            record_path: True to keep every point of every path (a bool).
             precision: "double" or "float".
             box: ``(min, max)`` corners; a ray stops where it leaves the box.
             max_steps: accepted steps before a ray stops (status RAY_STEP_LIMIT).
@@ -377,8 +480,9 @@ class Context:
         (``arcus_advance_params_init``: dp45, double, length 1, rtol 1e-9, atol 1e-12).
 
         Returns an :class:`AdvanceResult`.  Raises :class:`arcus.Error`; for
-        ARCUS_ERROR_INVALID_RAYS (some rays had NaN/Inf/zero input) and
-        ARCUS_ERROR_PATH_OVERFLOW the error's ``result`` holds every ray's result.
+        ARCUS_ERROR_INVALID_RAYS (some rays had bad input), ARCUS_ERROR_PATH_OVERFLOW and
+        ARCUS_ERROR_CANCELLED (``progress`` asked so) the error's ``result`` holds every
+        ray's result.
         """
         points = to_points(origins, "origins")
         heading = to_points(directions, "directions")
@@ -386,26 +490,67 @@ class Context:
             raise ArgumentError(
                 "origins and directions must hold the same number of rays, got %d and %d" % (len(points), len(heading))
             )
+        per_ray = None if wavelengths is None else to_per_ray(wavelengths, "wavelengths", len(points))
+        _check_progress(progress)
         params = _advance_params(dict(
             method=method, precision=precision, length=length, step=step, rtol=rtol, atol=atol, min_step=min_step,
             max_step=max_step, max_rejections=max_rejections, max_steps=max_steps, box=box, record_path=record_path,
             path_capacity=path_capacity))
         ctx = self._handle
         field_handle = self._field(field)
+
+        def start(callback, job):
+            params.progress = callback
+            return lib.arcus_advance(ctx, field_handle, byref(params), len(points), _lib.ptr(points),
+                                     _lib.ptr(heading), _lib.ptr(per_ray), job)
+
+        return self._run_job(start, progress, bool(params.record_path), "arcus_advance")
+
+    def _run_job(self, start, progress, record_path, what):
+        """Runs ``start(callback, job_out)`` (a library call making a job) and reads its job.
+
+        ``progress`` (checked already) is wrapped for the library: its return value
+        cancels, and an exception it raises (ctypes would print and drop it) cancels the
+        job and is raised here once the library has returned.
+        """
+        ctx = self._handle
+        raised = []
+        if progress is None:
+            callback = _lib.PROGRESS_CALLBACK()
+        else:
+            state = self._state
+
+            def on_progress(_user, fraction):
+                active = _active()
+                active.append(state)
+                try:
+                    return 1 if progress(fraction) else 0
+                except BaseException as exc:  # KeyboardInterrupt too: it cancels the job
+                    raised.append(exc)
+                    return 1
+                finally:
+                    active.pop()
+
+            callback = _lib.PROGRESS_CALLBACK(on_progress)
         job = c_void_p()
-        code = lib.arcus_advance(ctx, field_handle, byref(params), len(points), _lib.ptr(points), _lib.ptr(heading),
-                                 None, byref(job))
-        if code not in (C.SUCCESS, C.ERROR_INVALID_RAYS, C.ERROR_PATH_OVERFLOW):
-            self._check(code)
-        # The message lives only until the next call on the context: read it first.
-        message = self.last_error if code != C.SUCCESS else ""
-        if not job.value:  # arcus.h promises a job with these three statuses
-            raise Error(code, "arcus_advance returned %s but no job (a library bug); message: %r"
-                        % (_lib.status_name(code), message), _lib.status_name(code))
         try:
-            result = self._read_job(job, bool(params.record_path))
+            code = start(callback, byref(job))
         finally:
-            lib.arcus_job_release(job)
+            _flush_deferred()
+        # The message lives only until the next call on the context: read it first.
+        message = _lib.last_error(ctx) if code != C.SUCCESS else ""
+        try:
+            if raised:
+                raise raised[0]
+            if code != C.SUCCESS and code not in C.PARTIAL_RESULTS:
+                raise error_for(code, message, _lib.status_name(code))
+            if not job.value:  # arcus.h promises a job with these statuses
+                raise Error(code, "%s returned %s but no job (a library bug); message: %r"
+                            % (what, _lib.status_name(code), message), _lib.status_name(code))
+            result = self._read_job(job, record_path)
+        finally:
+            if job.value:
+                lib.arcus_job_release(job)
         if code != C.SUCCESS:
             raise error_for(code, message, _lib.status_name(code), result=result)
         return result
@@ -419,9 +564,11 @@ class Context:
         steps = np.empty(n, dtype=np.uint64)
         status = np.empty(n, dtype=np.int32)
         lengths = np.empty(n)
+        failures = np.empty(n, dtype=np.int32)
         self._check(lib.arcus_job_get_end_states(
             job, _lib.ptr(positions), _lib.ptr(directions), _lib.ptr(steps, c_uint64), _lib.ptr(status, c_int32),
             _lib.ptr(lengths)))
+        self._check(lib.arcus_job_get_failures(job, _lib.ptr(failures, c_int32)))
         bits = c_uint64()
         self._check(lib.arcus_job_get_features(job, byref(bits)))
         stats = _lib.JobStatsStruct()
@@ -432,13 +579,14 @@ class Context:
             steps=steps,
             status=status,
             lengths=lengths,
+            failures=failures,
             features=_lib.feature_names(bits.value),
             feature_bits=bits.value,
             stats={
                 "build_seconds": stats.build_seconds,
                 "kernel_seconds": stats.kernel_seconds,
                 "total_seconds": stats.total_seconds,
-                "program_origin": ("built", "memory cache", "disk cache")[stats.program_origin],
+                "program_origin": C.PROGRAM_ORIGINS.get(stats.program_origin, str(stats.program_origin)),
                 "launches": stats.launches,
                 "lanes": stats.lanes,
                 "groups": stats.groups,
@@ -457,3 +605,137 @@ class Context:
             result.path_needed = needed
             result.paths = [points[int(offsets[i]):int(offsets[i + 1])] for i in range(n)]
         return result
+
+    # -- scenes --
+
+    def load_scene(self, path):
+        """Loads a scene file (JSON, scenes/README.md) on this context: a :class:`Scene`.
+
+        The library reads and checks the file (``arcus_scene_load``); ``path`` is a str
+        or os.PathLike.  Raises arcus.Error: ARCUS_ERROR_IO if the file cannot be read,
+        ArgumentError for invalid JSON or an invalid scene (the message names the file
+        and the key, e.g. ``$.medium.radius``).
+        """
+        encoded = to_path(path, "path")
+        ctx = self._handle
+        out = c_void_p()
+        self._check(lib.arcus_scene_load(ctx, encoded, byref(out)))
+        return Scene(self, _Handle(out, lib.arcus_scene_release))
+
+    def _own(self, handle):
+        """Releases ``handle`` (a _Handle) with this context at the latest."""
+        self._state.objects.add(handle)
+        return handle
+
+
+# ---- scenes -----------------------------------------------------------------------------
+
+
+class SceneField(Field):
+    """The field of a :class:`Scene`: the library object the scene created.
+
+    Use it as the ``field`` of :meth:`Context.advance`, ``evaluate`` or ``field_kind``
+    with the Context that loaded the scene; another context refuses it (ArgumentError).
+    """
+
+    def __init__(self, context, handle, scene_name):
+        self._context = context
+        self._ref = context._own(handle)
+        self.scene_name = scene_name
+
+    def _handle_on(self, context):
+        if context is not self._context:
+            raise ArgumentError("field: the field of scene %r belongs to the arcus.Context that loaded the scene; "
+                                "load the scene on this context to use its field here" % (self.scene_name,))
+        return self._ref.value
+
+    def _create(self, ctx_handle, out):
+        raise ArgumentError("a scene's field is made by the scene")  # never reached: _handle_on answers
+
+    def __repr__(self):
+        return "<arcus.SceneField of scene %r>" % (self.scene_name,)
+
+
+def _read_only(array):
+    array.flags.writeable = False
+    return array
+
+
+class Scene:
+    """A scene file read by the library (``arcus_scene_load``): made by :meth:`Context.load_scene`.
+
+    Attributes:
+        name, description, engine: strings from the file ("curved" is the engine).
+        document: the scene as the library read it (JSON text).
+        origins, directions: (N, 3) the scene's rays (read-only arrays).
+        wavelengths: (N,) per-ray wavelengths in nm, or None if the scene gives none.
+        params: the scene's integrator settings as :meth:`Context.advance` keywords
+            (method, length, rtol, ..., box (None or (min, max)), record_path, ...).
+        field: a :class:`SceneField`, the scene's medium, for this scene's Context.
+
+    ``ctx.advance(scene.field, scene.origins, scene.directions,
+    wavelengths=scene.wavelengths, **scene.params)`` runs the job :meth:`advance` runs.
+    The library objects are released when the Scene is garbage collected, or with
+    its Context.
+    """
+
+    def __init__(self, context, handle):
+        self._context = context
+        self._ref = context._own(handle)
+        scene = handle.value
+        self.engine = self._string(lib.arcus_scene_get_engine)
+        self.name = self._string(lib.arcus_scene_get_name)
+        self.description = self._string(lib.arcus_scene_get_description)
+        self.document = self._string(lib.arcus_scene_get_document)
+        if self.engine != "curved":
+            raise Error(C.ERROR_UNSUPPORTED, "scene %r is for the %r engine; this package handles curved scenes"
+                        % (self.name, self.engine), _lib.status_name(C.ERROR_UNSUPPORTED))
+        count = c_size_t()
+        context._check(lib.arcus_scene_get_ray_count(scene, byref(count)))
+        origins = np.empty((count.value, 3))
+        directions = np.empty((count.value, 3))
+        wavelengths = np.empty(count.value)
+        given = c_int32()
+        context._check(lib.arcus_scene_get_rays(scene, _lib.ptr(origins), _lib.ptr(directions),
+                                                _lib.ptr(wavelengths), byref(given)))
+        self.origins = _read_only(origins)
+        self.directions = _read_only(directions)
+        self.wavelengths = _read_only(wavelengths) if given.value else None
+        params = _lib.AdvanceParamsStruct()
+        context._check(lib.arcus_scene_get_advance_params(scene, byref(params)))
+        self._params = _advance_options(params)
+        field = c_void_p()
+        context._check(lib.arcus_scene_get_field(scene, byref(field)))
+        self.field = SceneField(context, _Handle(field, lib.arcus_field_release), self.name)
+
+    @property
+    def params(self):
+        """The scene's integrator settings as :meth:`Context.advance` keywords (a new dict)."""
+        return dict(self._params)
+
+    def _string(self, getter):
+        text = c_char_p()
+        self._context._check(getter(self._ref.value, byref(text)))
+        return _lib.decode(text.value)
+
+    def __len__(self):
+        return len(self.origins)
+
+    def __repr__(self):
+        return "<arcus.Scene %r (%s, %d rays)>" % (self.name, self.engine, len(self))
+
+    def advance(self, progress=None):
+        """Advances the scene's rays through its field with its settings (``arcus_scene_advance``).
+
+        ``progress`` is that of :meth:`Context.advance` (must not call this scene's
+        context).  Returns an :class:`AdvanceResult`; raises :class:`arcus.Error` as
+        :meth:`Context.advance` does, partial results attached.
+        """
+        _check_progress(progress)
+        self._context._handle  # closed or called from a progress callback: raises
+        scene = self._ref.value
+
+        def start(callback, job):
+            return lib.arcus_scene_advance(scene, callback, None, job)
+
+        return self._context._run_job(start, progress, self._params["record_path"], "arcus_scene_advance")

@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import _lib
-from ._args import to_float, to_int, to_vec3
+from ._args import to_bool, to_float, to_int, to_path, to_real_array, to_vec3
 from ._errors import ArgumentError
 from ._lib import lib
 
@@ -50,13 +50,19 @@ class Field:
 
     Subclasses implement ``_create(ctx_handle, out)``, calling the matching
     ``arcus_field_create_*`` and returning its status; :class:`arcus.Context` does the
-    caching and error handling.
+    caching and error handling.  (A scene's field, :class:`arcus.SceneField`, is no
+    description but the library object of one context.)
     """
 
     __slots__ = ()
 
     def _create(self, ctx_handle, out):
         raise NotImplementedError
+
+    def _handle_on(self, context):
+        """The library handle this field always has on ``context``; None: ``context``
+        creates one with ``_create`` and caches it (every description does that)."""
+        return None
 
     def evaluate(self, context, positions):
         """n and its gradient at ``positions`` ((N, 3) or (3,)), on the host.
@@ -158,9 +164,9 @@ class StandardAtmosphere(Field):
 
     Args:
         spherical: False: flat, height is y (y = 0 at sea level).  True: a sphere of
-            radius :data:`arcus.EARTH_RADIUS` centred on the origin.
-        wavelength: nm, within the range of Ciddor's dispersion formula (from 300 nm
-            into the near infrared).
+            radius :data:`arcus.EARTH_RADIUS` centred on the origin.  A bool only.
+        wavelength: nm, within the range of Ciddor's dispersion formula (300..1690 nm).
+            Per-ray wavelengths given to :meth:`arcus.Context.advance` replace it.
         inversions: a sequence of :class:`Inversion` or ``(base, top, delta_t)`` tuples.
         sea_level_temperature: K.
         sea_level_pressure: Pa.
@@ -190,7 +196,7 @@ class StandardAtmosphere(Field):
             )
         _normalise(
             self,
-            spherical=bool(self.spherical),
+            spherical=to_bool(self.spherical, "spherical"),
             wavelength=to_float(self.wavelength, "wavelength"),
             inversions=tuple(inversions),
             sea_level_temperature=to_float(self.sea_level_temperature, "sea_level_temperature"),
@@ -249,10 +255,7 @@ class Grid(Field):
     spacing: tuple
 
     def __post_init__(self):
-        try:
-            values = np.array(self.values, dtype=np.float64, order="C", copy=True)
-        except (TypeError, ValueError):
-            raise ArgumentError("values must be a 3D array of numbers") from None
+        values = np.array(to_real_array(self.values, "values"), order="C", copy=True)
         if values.ndim != 3:
             raise ArgumentError("values must be a 3D array indexed [z][y][x], got shape %s" % (values.shape,))
         values.flags.writeable = False
@@ -286,7 +289,8 @@ class Grid(Field):
         """A grid read by the library from a raw little-endian file.
 
         Args:
-            path: the file: nx*ny*nz values, in the order of ``values`` above.
+            path: the file (str, bytes or os.PathLike): nx*ny*nz little-endian values,
+                in the order of ``values`` above.
             shape: (nz, ny, nx), i.e. the numpy shape the data would have as ``values``
                 (so ``Grid.from_file(p, grid.values.shape, ...)`` round-trips).
             origin, spacing: as for :class:`Grid`.
@@ -312,24 +316,26 @@ class GridFile(Field):
 
     def __post_init__(self):
         try:
-            dtype = np.dtype(self.dtype).name
+            dtype = np.dtype(self.dtype)
         except TypeError:
             dtype = None
-        if dtype not in _SCALAR_TYPES:
-            raise ArgumentError("dtype must be 'float32' or 'float64', got %r" % (self.dtype,))
+        # The file is little-endian: a big-endian dtype (">f4") would be misread.
+        if dtype is None or dtype.name not in _SCALAR_TYPES or dtype != dtype.newbyteorder("<"):
+            raise ArgumentError("dtype must be 'float32' or 'float64' (little-endian), got %r" % (self.dtype,))
+        to_path(self.path, "path")  # refused here, not truncated at a NUL by ctypes later
         _normalise(
             self,
             path=os.fspath(self.path),
             shape=_grid_shape(self.shape),
             origin=to_vec3(self.origin, "origin"),
             spacing=to_vec3(self.spacing, "spacing"),
-            dtype=dtype,
+            dtype=dtype.name,
         )
 
     def _create(self, ctx_handle, out):
         return lib.arcus_field_create_grid_from_file(
             ctx_handle,
-            os.fsencode(self.path),
+            to_path(self.path, "path"),
             _SCALAR_TYPES[self.dtype],
             _dims(self.shape),
             _lib.vec3(self.origin),
