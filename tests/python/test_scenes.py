@@ -258,12 +258,12 @@ def test_invalid_scene_names_the_file_and_key(ctx, tmp_path, document, where):
     assert str(path) in caught.value.message and where in caught.value.message
 
 
-def test_invalid_integrator_settings_are_refused_when_advancing(ctx, tmp_path):
-    """The library checks a scene's integrator values when it advances (arcus_advance's checks)."""
-    scene = ctx.load_scene(write_scene(tmp_path, linear_scene(integrator={"length": -1})))
-    assert scene.params["length"] == -1.0
-    with pytest.raises(arcus.ArgumentError, match="length"):
-        scene.advance()
+def test_invalid_integrator_settings_are_refused_when_the_scene_is_read(ctx, tmp_path):
+    """The library checks a scene's integrator values as it reads the file, naming it."""
+    path = write_scene(tmp_path, linear_scene(integrator={"length": -1}))
+    with pytest.raises(arcus.ArgumentError, match=r"\$\.integrator.*length") as caught:
+        ctx.load_scene(path)
+    assert str(path) in str(caught.value)
 
 
 @pytest.mark.parametrize("path", ["scenes/mirage.json\0ignored", b"scenes/mirage.json\0", 42, None, ["a.json"]],
