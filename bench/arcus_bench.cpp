@@ -33,7 +33,9 @@
 #include <utility>
 #include <vector>
 
+#include "flops.hpp"
 #include "fp64_peak.hpp"
+#include "native_rk4.hpp"
 #include "odeint_peer.hpp"
 #include "problem.hpp"
 
@@ -440,6 +442,30 @@ Row measure_peer(const RaySet& rays, std::size_t count, double tol, unsigned thr
   return row;
 }
 
+// The native C++ RK4 peer (native_rk4.hpp) at step h, L = kLength, on `threads`
+// threads: a probe launch sizes the ray count to about `seconds` per launch.
+Row measure_native_rk4(const RaySet& rays, double h, unsigned threads, double seconds, int min_launches) {
+  auto integrate = [&](std::size_t count) {
+    return bench::run_native_rk4(rays, count, kN0, kGradient, kLength, h, threads);
+  };
+  const std::size_t probe = std::min<std::size_t>(256, rays.count());
+  const double per_ray = std::max(integrate(probe).seconds, 1e-9) / static_cast<double>(probe);
+  const std::size_t count = std::clamp<std::size_t>(static_cast<std::size_t>(seconds / per_ray) / 64 * 64, probe,
+                                                    rays.count());
+  const bench::PeerRun run = integrate(count);
+  const Timing timing = time_launches(run.seconds, [&] { return integrate(count).seconds; }, seconds, min_launches);
+  Row row;
+  row.impl = "native";
+  row.setting = {ARCUS_METHOD_RK4, ARCUS_PRECISION_DOUBLE, h, 0, kLength, kGradient};
+  row.threads = threads;
+  row.rays = count;
+  row.mean_steps = std::accumulate(run.steps.begin(), run.steps.end(), 0.0) / static_cast<double>(count);
+  row.set_timing(timing);
+  row.wall_seconds = row.seconds;
+  fill_errors(row, bench::end_point_errors(rays, count, run.positions.data(), kN0, kGradient, kLength));
+  return row;
+}
+
 // ---- the studies -------------------------------------------------------------------------
 void print_row(const Row& r) {
   const Setting& s = r.setting;
@@ -645,7 +671,7 @@ std::string markdown_table(const std::vector<Row>& rows) {
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Row& r : rows) {
     const Setting& s = r.setting;
-    const std::string impl = r.impl == "odeint" ? "odeint ×" + std::to_string(r.threads) : r.impl;
+    const std::string impl = r.impl == "arcus" ? r.impl : r.impl + " ×" + std::to_string(r.threads);
     md << "| " << impl << " | " << method_name(s.method) << " | " << precision_name(s.precision) << " | "
        << (adaptive(s) ? "tol " + fmt("%.3g", s.tol) : "h " + fmt("%.3g", s.step)) << " | " << fmt("%g", s.length)
        << " | " << fmt("%g", s.gradient) << " | " << r.rays << " × " << r.launches << " | " << fmt("%.4g", r.mean_steps) << " | "
@@ -744,7 +770,30 @@ struct Results {
   std::vector<Row> step, tolerance, peer, distance, gradient, precision, layout;
   DpComparison dp;
   PeakComparison peak;
+  std::vector<Row> native;  // native C++ RK4 on 1 thread, then on every core
 };
+
+// arcus' RK4 (the peak run) against the native C++ loop: fastest launches, and the
+// fraction of the FP64 peak with FLOPs counted from the formulas (flops.hpp).
+std::string native_rk4_summary(const Results& r) {
+  const double flops = bench::flops_per_step(ARCUS_METHOD_RK4, ARCUS_FIELD_LINEAR);
+  const Row& a = r.peak.rk4;
+  const std::size_t shared = std::min({a.rays, r.native[0].rays, r.native[1].rays});  // errors over the same rays
+  std::ostringstream md;
+  md << "**RK4 against native C++** (bench/native_rk4.cpp: OpenMP, -O3 -march=native), h = " << kRk4PeakStep
+     << ", L = " << kLength << ", " << flops << " FLOPs per step (flops.hpp; PoCL's compiled kernel executes 97):\n\n"
+     << "| impl | steps/s | arcus ÷ it | max err m (first " << shared << " rays) | GFLOP/s | of FP64 peak |\n"
+     << "|---|---|---|---|---|---|\n";
+  for (const Row* row : {&a, &r.native[0], &r.native[1]}) {
+    const double gflops = row->best_steps_per_second() * flops * 1e-9;
+    md << "| " << (row->impl == "arcus" ? "arcus" : "native ×" + std::to_string(row->threads)) << " | "
+       << fmt("%.3e", row->best_steps_per_second()) << " | "
+       << fmt("%.2f×", a.best_steps_per_second() / row->best_steps_per_second()) << " | "
+       << fmt("%.2e", row->err_max_over(shared)) << " | " << fmt("%.1f", gflops) << " | "
+       << fmt("%.1f%%", 100 * gflops / r.peak.best.gflops) << " |\n";
+  }
+  return md.str();
+}
 
 void write_markdown(const fs::path& path, const Machine& m, const Plan& p, const Results& r, bool quick) {
   std::ofstream md(path);
@@ -798,6 +847,7 @@ void write_markdown(const fs::path& path, const Machine& m, const Plan& p, const
      << " independent FMA chains, best of 5 launches). Microkernel variants:";
   for (const auto& v : pk.variants) md << " double" << v.vector_width << " × " << v.chains << ": " << fmt("%.1f", v.gflops) << ";";
   md << "\n\n" << markdown_table({pk.rk4}) << "\n";
+  md << native_rk4_summary(r) << "\n" << markdown_table(r.native) << "\n";
 
   md << "## (a, c) fixed-step methods against step, L = 1000\n\n" << markdown_table(r.step) << "\n"
      << "## (b, d) DP45 against tolerance, L = 1000, with the peer\n\n" << markdown_table(r.tolerance) << "\n"
@@ -860,6 +910,11 @@ int run_benchmark(const Options& opt) {
   std::printf("RK4 against the FP64 peak\n");
   r.peak = compare_rk4_with_peak(arcus, plan);
   print_row(r.peak.rk4);
+  std::printf("RK4 against native C++\n");
+  for (unsigned threads : {1u, std::max(1u, std::thread::hardware_concurrency())}) {
+    r.native.push_back(measure_native_rk4(rays, kRk4PeakStep, threads, plan.headline_seconds, 3));
+    print_row(r.native.back());
+  }
 
   write_csv(out_dir / "step.csv", r.step);
   std::vector<Row> tol_rows = r.tolerance;
@@ -869,15 +924,21 @@ int run_benchmark(const Options& opt) {
   write_csv(out_dir / "gradient.csv", r.gradient);
   write_csv(out_dir / "float.csv", r.precision);
   write_csv(out_dir / "headline.csv", {r.dp.arcus, r.dp.peer, r.dp.peer_all_cores, r.peak.rk4});
+  write_csv(out_dir / "native.csv", r.native);
   write_peak_csv(out_dir / "fp64_peak.csv", r.peak);
   if (!r.layout.empty()) write_csv(out_dir / "layout.csv", r.layout);
   machine.load_after = load_average();
   write_markdown(out_dir / "results.md", machine, plan, r, opt.quick);
   if (opt.plot) run_plot_script(out_dir);
 
-  std::printf("wrote %s/{step,tolerance,distance,gradient,float,headline,fp64_peak%s}.csv, results.md%s\n",
+  std::printf("wrote %s/{step,tolerance,distance,gradient,float,headline,native,fp64_peak%s}.csv, results.md%s\n",
               fs::absolute(out_dir).c_str(), r.layout.empty() ? "" : ",layout",
               opt.plot ? ", fig5_13*.png, float.png" : "");
+  std::printf("RK4 arcus vs native C++: %.3e vs %.3e (1 thread), %.3e (%u threads) steps/s: %.2fx, %.2fx\n",
+              r.peak.rk4.best_steps_per_second(), r.native[0].best_steps_per_second(),
+              r.native[1].best_steps_per_second(), r.native[1].threads,
+              r.peak.rk4.best_steps_per_second() / r.native[0].best_steps_per_second(),
+              r.peak.rk4.best_steps_per_second() / r.native[1].best_steps_per_second());
   std::printf("DP45 basis: %s\n", dp45_basis(r.dp, plan).c_str());
   std::printf("%s\n%s\n", dp45_line(r.dp).c_str(), rk4_line(r.peak).c_str());
   return 0;
