@@ -62,6 +62,27 @@ ARCUS_INLINE void record_point(__global REAL* path, int capacity, size_t first_r
     failure[g] = SEL(failure[g], (IDXV)(why), fail_);                   \
   } while (0)
 
+/* The six components of a ray6 from/to a structure-of-arrays buffer, lane group v. */
+ARCUS_INLINE ray6 ray_load(__global const REAL* p, size_t v, size_t stride) {
+  ray6 r;
+  r.x = VLOAD(v, p);
+  r.y = VLOAD(v, p + stride);
+  r.z = VLOAD(v, p + 2 * stride);
+  r.vx = VLOAD(v, p + 3 * stride);
+  r.vy = VLOAD(v, p + 4 * stride);
+  r.vz = VLOAD(v, p + 5 * stride);
+  return r;
+}
+
+ARCUS_INLINE void ray_store(ray6 r, __global REAL* p, size_t v, size_t stride) {
+  VSTORE(r.x, v, p);
+  VSTORE(r.y, v, p + stride);
+  VSTORE(r.z, v, p + 2 * stride);
+  VSTORE(r.vx, v, p + 3 * stride);
+  VSTORE(r.vy, v, p + 4 * stride);
+  VSTORE(r.vz, v, p + 5 * stride);
+}
+
 __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* wavelengths, __global REAL* state,
                             __global int* istate, __global REAL* path, const field_desc field,
                             __global const REAL* field_data, const advance_desc job) {
@@ -101,9 +122,8 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
      * advanced; so is a start where n is not a positive finite number. */
     FOR_GROUPS(g) {
       const size_t v = first_vector + g;
-      REALV x = VLOAD(v, rays_in), yy = VLOAD(v, rays_in + stride), z = VLOAD(v, rays_in + 2 * stride);
-      REALV dx = VLOAD(v, rays_in + 3 * stride), dy = VLOAD(v, rays_in + 4 * stride);
-      REALV dz = VLOAD(v, rays_in + 5 * stride);
+      const ray6 in = ray_load(rays_in, v, stride); /* origin, direction */
+      REALV x = in.x, yy = in.y, z = in.z, dx = in.vx, dy = in.vy, dz = in.vz;
       /* Scaled by its largest component first, so that no finite non-zero direction
        * under- or overflows when squared (the host applies the same test). */
       REALV dmax = fmax(fmax(fabs(dx), fabs(dy)), fabs(dz));
@@ -147,20 +167,10 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
   } else {
     FOR_GROUPS(g) {
       const size_t v = first_vector + g;
-      y[g].x = VLOAD(v, REAL_STATE(ARCUS_STATE_X));
-      y[g].y = VLOAD(v, REAL_STATE(ARCUS_STATE_X + 1));
-      y[g].z = VLOAD(v, REAL_STATE(ARCUS_STATE_X + 2));
-      y[g].vx = VLOAD(v, REAL_STATE(ARCUS_STATE_X + 3));
-      y[g].vy = VLOAD(v, REAL_STATE(ARCUS_STATE_X + 4));
-      y[g].vz = VLOAD(v, REAL_STATE(ARCUS_STATE_X + 5));
+      y[g] = ray_load(REAL_STATE(ARCUS_STATE_X), v, stride);
       s[g] = VLOAD(v, REAL_STATE(ARCUS_STATE_S));
 #ifdef ARCUS_USE_FLOAT
-      comp[g].x = VLOAD(v, REAL_STATE(ARCUS_STATE_COMP));
-      comp[g].y = VLOAD(v, REAL_STATE(ARCUS_STATE_COMP + 1));
-      comp[g].z = VLOAD(v, REAL_STATE(ARCUS_STATE_COMP + 2));
-      comp[g].vx = VLOAD(v, REAL_STATE(ARCUS_STATE_COMP + 3));
-      comp[g].vy = VLOAD(v, REAL_STATE(ARCUS_STATE_COMP + 4));
-      comp[g].vz = VLOAD(v, REAL_STATE(ARCUS_STATE_COMP + 5));
+      comp[g] = ray_load(REAL_STATE(ARCUS_STATE_COMP), v, stride);
 #else
       comp[g] = ray_times(y[g], RC(0));
 #endif
@@ -295,20 +305,10 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
    * the last one the host reads the results from it. */
   FOR_GROUPS(g) {
     const size_t v = first_vector + g;
-    VSTORE(y[g].x, v, REAL_STATE(ARCUS_STATE_X));
-    VSTORE(y[g].y, v, REAL_STATE(ARCUS_STATE_X + 1));
-    VSTORE(y[g].z, v, REAL_STATE(ARCUS_STATE_X + 2));
-    VSTORE(y[g].vx, v, REAL_STATE(ARCUS_STATE_X + 3));
-    VSTORE(y[g].vy, v, REAL_STATE(ARCUS_STATE_X + 4));
-    VSTORE(y[g].vz, v, REAL_STATE(ARCUS_STATE_X + 5));
+    ray_store(y[g], REAL_STATE(ARCUS_STATE_X), v, stride);
     VSTORE(s[g], v, REAL_STATE(ARCUS_STATE_S));
 #ifdef ARCUS_USE_FLOAT
-    VSTORE(comp[g].x, v, REAL_STATE(ARCUS_STATE_COMP));
-    VSTORE(comp[g].y, v, REAL_STATE(ARCUS_STATE_COMP + 1));
-    VSTORE(comp[g].z, v, REAL_STATE(ARCUS_STATE_COMP + 2));
-    VSTORE(comp[g].vx, v, REAL_STATE(ARCUS_STATE_COMP + 3));
-    VSTORE(comp[g].vy, v, REAL_STATE(ARCUS_STATE_COMP + 4));
-    VSTORE(comp[g].vz, v, REAL_STATE(ARCUS_STATE_COMP + 5));
+    ray_store(comp[g], REAL_STATE(ARCUS_STATE_COMP), v, stride);
 #endif
     VSTORE_I(steps[g], v, INT_STATE(ARCUS_STATE_STEPS));
     VSTORE_I(status[g] | (failure[g] << (IDXV)ARCUS_FAILURE_SHIFT), v, INT_STATE(ARCUS_STATE_STATUS));
