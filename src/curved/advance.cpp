@@ -1,7 +1,6 @@
 #include "curved/advance.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -11,6 +10,7 @@
 #include "core/context.h"
 #include "core/error.h"
 #include "core/format.h"
+#include "core/slices.h"
 #include "curved/advance_desc.h"  // kernels/curved/advance_desc.h: shared with the kernel
 #include "curved/fields.h"
 
@@ -21,11 +21,8 @@ constexpr uint32_t kDefaultDpPathCapacity = 4096;
 constexpr double kMaxDefaultPathBytes = 1024.0 * 1024.0 * 1024.0;  // a default capacity stays under this
 constexpr uint32_t kCpuGroupsFixed = 4;  // measured (bench --sweep-layout): 8 lanes × 4 groups
 constexpr uint32_t kCpuGroupsDp45 = 2;   // DP45's seven stages hold more state: 8 × 2
-constexpr double kSliceSeconds = 0.25;   // aim of one launch: progress 4× a second, short GPU launches
 constexpr double kFirstSliceRaySteps = 1 << 24;  // ≈ 20 ms of RK4 on two cores
 constexpr int32_t kFirstSliceAttempts = 256;     // DP45: most rays finish in one slice
-
-std::atomic<int32_t> g_slice_units{0};  // testing::set_slice_units
 
 const char* method_name(int32_t m) {
   switch (m) {
@@ -297,52 +294,40 @@ bool run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
   kernel.set_value(5, field_desc_as<FieldDesc>(field->desc));
   kernel.set(6, data.get());
 
-  // Slices: each launch takes up to `chunk` steps (fixed) or attempts (DP45), sized from
-  // the last launch's time to take about kSliceSeconds.
+  // Slices: up to `units` steps of every ray (fixed) or attempts (DP45) per launch.
   std::vector<int32_t> status(stride);
   std::vector<Real> s(stride);
-  auto any_active = [&] {
-    dev.istate->read(ctx, ARCUS_STATE_STATUS * stride * sizeof(int32_t), stride * sizeof(int32_t), status.data());
-    return std::any_of(status.begin(), status.end(),
-                       [](int32_t w) { return (w & ((1 << ARCUS_FAILURE_SHIFT) - 1)) == ARCUS_STATUS_ACTIVE; });
-  };
-  const int32_t fixed_units = g_slice_units.load();
-  double chunk = fixed_units       ? fixed_units
-                 : plan.dp45 ? kFirstSliceAttempts
-                             : std::max(1.0, kFirstSliceRaySteps / static_cast<double>(stride));
   int32_t done = 0;  // fixed: steps taken by every ray so far
-  double reported = 0;
-  bool cancelled = false;
-  for (bool first = true;; first = false) {
-    const int32_t n = static_cast<int32_t>(std::min<double>(chunk, std::numeric_limits<int32_t>::max()));
+  SliceJob slices;
+  slices.first_units = plan.dp45 ? kFirstSliceAttempts : kFirstSliceRaySteps / static_cast<double>(stride);
+  slices.launch = [&](int64_t units, bool first) {
+    const int32_t n = static_cast<int32_t>(std::min<int64_t>(units, std::numeric_limits<int32_t>::max()));
     desc.first_slice = first ? 1 : 0;
     desc.slice_begin = done;
     desc.slice_end = plan.dp45 ? n : static_cast<int32_t>(std::min<int64_t>(int64_t(done) + n, desc.fixed_steps));
     kernel.set_value(7, desc);
     const double seconds = kernel.run(ctx, items);
-    job->stats.kernel_seconds += seconds;
-    job->stats.launches += 1;
-    if (!fixed_units)
-      chunk = std::clamp(chunk * kSliceSeconds / std::max(seconds, 1e-6), std::max(1.0, chunk / 2), chunk * 8);
     if (!plan.dp45) done = desc.slice_end;
-    const bool finished = plan.dp45 || p.use_box ? !any_active() : done >= desc.fixed_steps;
-    if (finished) break;
-    if (p.progress) {
-      double fraction = static_cast<double>(done) / desc.fixed_steps;
-      if (plan.dp45) {
-        dev.state->read(ctx, ARCUS_STATE_S * stride * sizeof(Real), stride * sizeof(Real), s.data());
-        double sum = 0;
-        for (size_t i = 0; i < count; ++i) sum += std::min(1.0, static_cast<double>(s[i]) / p.length);
-        fraction = sum / static_cast<double>(std::max<size_t>(count, 1));
-      }
-      reported = std::max(reported, std::min(fraction, 1.0));
-      if (p.progress(p.progress_user, reported) != 0) {
-        cancelled = true;
-        break;
-      }
-    }
-  }
-  if (p.progress && !cancelled) p.progress(p.progress_user, 1.0);
+    return seconds;
+  };
+  // Fixed steps without a box end together; adaptive or boxed rays each in their time.
+  slices.finished = [&] {
+    if (!plan.dp45 && !p.use_box) return done >= desc.fixed_steps;
+    dev.istate->read(ctx, ARCUS_STATE_STATUS * stride * sizeof(int32_t), stride * sizeof(int32_t), status.data());
+    return std::none_of(status.begin(), status.end(),
+                        [](int32_t w) { return (w & ((1 << ARCUS_FAILURE_SHIFT) - 1)) == ARCUS_STATUS_ACTIVE; });
+  };
+  // The share of the path travelled, over all rays.
+  slices.fraction = [&] {
+    if (!plan.dp45) return static_cast<double>(done) / desc.fixed_steps;
+    dev.state->read(ctx, ARCUS_STATE_S * stride * sizeof(Real), stride * sizeof(Real), s.data());
+    double sum = 0;
+    for (size_t i = 0; i < count; ++i) sum += std::min(1.0, static_cast<double>(s[i]) / p.length);
+    return sum / static_cast<double>(std::max<size_t>(count, 1));
+  };
+  slices.progress = p.progress;
+  slices.progress_user = p.progress_user;
+  const bool cancelled = run_in_slices(slices, &job->stats);
 
   // The results are the state.
   std::vector<Real> st(state_reals * stride);
@@ -454,10 +439,6 @@ Plan plan_advance(const arcus_advance_params& p, const arcus_field_desc_d& field
   plan.layout = choose_layout(entry, plan.straight ? 1 : plan.dp45 ? kCpuGroupsDp45 : kCpuGroupsFixed);
   return plan;
 }
-
-namespace testing {
-void set_slice_units(int32_t units) { g_slice_units = units; }
-}  // namespace testing
 
 
 arcus_status advance(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params& p, size_t count,

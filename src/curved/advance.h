@@ -65,10 +65,4 @@ arcus_status advance(arcus_context_t* ctx, arcus_field_t* field, const arcus_adv
                      const double* origins, const double* directions, const double* wavelengths, arcus_job_t** job,
                      std::string* message);
 
-namespace testing {
-// Every slice takes exactly `units` steps (fixed) or attempts (DP45); 0 restores the
-// timed slices.  Results must not depend on it (a determinism test checks).
-void set_slice_units(int32_t units);
-}  // namespace testing
-
 }  // namespace arcus::curved

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "curved/advance.h"
+#include "core/slices.h"
 #include "unit_util.h"
 
 namespace {
@@ -21,7 +21,7 @@ struct Result {
 };
 
 Result run(arcus_context_t* ctx, arcus_field_t* field, arcus_advance_params p, int32_t slice_units) {
-  arcus::curved::testing::set_slice_units(slice_units);
+  arcus::testing::set_slice_units(slice_units);
   std::vector<double> o, d;
   for (int i = 0; i < 40; ++i) {
     o.insert(o.end(), {0.0, 0.05 * i, 0.0});
@@ -31,7 +31,7 @@ Result run(arcus_context_t* ctx, arcus_field_t* field, arcus_advance_params p, i
   arcus_job_t* job = nullptr;
   EXPECT_EQ(arcus_advance(ctx, field, &p, n, o.data(), d.data(), nullptr, &job), ARCUS_SUCCESS)
       << arcus_context_last_error(ctx);
-  arcus::curved::testing::set_slice_units(0);
+  arcus::testing::set_slice_units(0);
   Result r;
   if (!job) return r;
   r.positions.resize(3 * n);
