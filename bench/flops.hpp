@@ -63,13 +63,9 @@ constexpr double flops_per_step(arcus_method method, arcus_field_kind kind) {
       // 4 derivatives; 3 stage states ray_step: 36; acc += 2 k2, 2 k3 (ray_fma): 24;
       // k4 + acc (ray_fma by 1): 6; ray_advance(y, h/6, ·): 12.
       //
-      // Linear field: 4 × 10 + 36 + 24 + 6 + 12 = 118.  The old hand count in
-      // arcus_bench.cpp said "naive 120": the same plus h/2 and h/6 counted as if
-      // per ray.  Its "compiled 97" is what PoCL's machine code executes: ∇n is
-      // constant, so the v part of acc (2 ray_fma + add: 15) is loop-invariant and
-      // hoisted, and stage 3's v equals stage 2's (6): 118 − 21 = 97.  Achieved
-      // GFLOP/s from 118 is therefore 118/97 = 1.22× the executed rate; the other
-      // fields have a varying ∇n and no such removal.
+      // Linear field: 4 × 10 + 36 + 24 + 6 + 12 = 118.  PoCL's machine code executes
+      // fewer (kRk4LinearExecutedFlops below); the other fields have a varying ∇n and no
+      // such removal.
       return 4 * d + 36 + 24 + 6 + 12;
     case ARCUS_METHOD_DP45: {
       // 6 derivatives (k2..k7; k1 comes from the previous step, FSAL).
@@ -91,5 +87,19 @@ constexpr double flops_per_step(arcus_method method, arcus_field_kind kind) {
 }
 
 static_assert(flops_per_step(ARCUS_METHOD_RK4, ARCUS_FIELD_LINEAR) == 118, "see the RK4 comment");
+
+// What PoCL's compiled RK4 step executes per ray for the linear field: 97 of the 118.
+// ∇n is constant, so the v part of acc (2 ray_fma + add per component: 15) is loop
+// invariant and hoisted out of the step loop, and stage 3's v equals stage 2's and is
+// computed once (6): 118 − 21 = 97.  Checked in the disassembly of one step-loop
+// iteration (8 groups of double8): 312 vfmadd, 96 vmulpd, 24 vaddpd and 32 vdivpd on
+// zmm, per group 39 FMA + 12 mul + 3 add + 4 div = 97 (README.md, "RK4 FLOPs per step",
+// says how to redo it after a kernel change).
+constexpr double kRk4LinearExecutedFlops = 97;
+
+// RK4's divisions per step per ray: 1/n in each of its 4 derivatives.  A division counts
+// 1 FLOP but the divider takes a new one far less often than an FMA pipe an FMA, so
+// these 4 can bound the step rate before the FMAs do (fp64_peak measures both rates).
+constexpr double kRk4DivisionsPerStep = 4;
 
 }  // namespace bench

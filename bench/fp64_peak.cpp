@@ -47,22 +47,25 @@ cl_device_id find_device(const std::string& platform_name, const std::string& de
   throw std::runtime_error("fp64 peak: no OpenCL device named '" + device_name + "' on platform '" + platform_name + "'");
 }
 
-// One work-item runs `chains` independent x = fma(x, a, b) recurrences on doubleN
-// vectors.  Independent chains hide the FMA latency (≈4 cycles × 2 pipes needs ≥ 8 in
-// flight); a and b are kernel arguments so the compiler cannot fold the loop, and
-// a < 1 keeps the values finite and normal (x → b / (1 − a)).  The chains are summed
-// and stored so none of them is dead code.
-std::string kernel_source(int width, int chains) {
+enum class Operation { Fma, Division };
+
+// One work-item runs `chains` independent recurrences on doubleN vectors: x = fma(x, a, b)
+// (a < 1 keeps x finite and normal, x → b / (1 − a)) or x = a / x (x alternates between
+// x0 and a / x0).  Independent chains hide the latency (FMA: ≈4 cycles × 2 pipes needs
+// ≥ 8 in flight); a and b are kernel arguments so the compiler cannot fold the loop.  The
+// chains are summed and stored so none of them is dead code.
+std::string kernel_source(Operation op, int width, int chains) {
   const std::string vec = "double" + std::to_string(width);
   std::string init, body, sum;
   for (int c = 0; c < chains; ++c) {
     const std::string x = "x" + std::to_string(c);
-    init += "  " + vec + " " + x + " = (" + vec + ")(seed + " + std::to_string(c) + ".0);\n";
-    body += "    " + x + " = fma(" + x + ", a, b);\n";
+    // 1 + …: a division chain must not start at 0 (a / 0 = inf, a / inf = 0, …).
+    init += "  " + vec + " " + x + " = (" + vec + ")(1.0 + seed + " + std::to_string(c) + ".0);\n";
+    body += "    " + x + " = " + (op == Operation::Fma ? "fma(" + x + ", a, b)" : "a / " + x) + ";\n";
     sum += (c ? " + " : "") + x;
   }
   return "#pragma OPENCL EXTENSION cl_khr_fp64 : enable\n"
-         "__kernel void fma_chains(__global double* out, const int iterations, const double a, const double b) {\n"
+         "__kernel void chains(__global double* out, const int iterations, const double a, const double b) {\n"
          "  const double seed = (double)get_global_id(0) * 1e-6;\n" +
          init + "  for (int i = 0; i < iterations; ++i) {\n" + body + "  }\n" +
          "  vstore" + std::to_string(width) + "(" + sum + ", get_global_id(0), out);\n}\n";
@@ -92,14 +95,15 @@ double launch_seconds(ClSession& s, cl_kernel kernel, size_t global, size_t loca
   return (t1 - t0) * 1e-9;
 }
 
-PeakResult measure_variant(ClSession& s, int width, int chains, double target_seconds) {
-  const std::string src = kernel_source(width, chains);
+// Operations (FMAs or divisions) per second of one variant.
+double measure_variant(ClSession& s, Operation op, int width, int chains, double target_seconds) {
+  const std::string src = kernel_source(op, width, chains);
   const char* text = src.c_str();
   cl_int err;
   cl_program program = clCreateProgramWithSource(s.context, 1, &text, nullptr, &err);
   check(err, "clCreateProgramWithSource");
   check(clBuildProgram(program, 1, &s.device, "", nullptr, nullptr), "clBuildProgram");
-  cl_kernel kernel = clCreateKernel(program, "fma_chains", &err);
+  cl_kernel kernel = clCreateKernel(program, "chains", &err);
   check(err, "clCreateKernel");
 
   // Several work-groups per core so every core stays busy to the end (PoCL runs one
@@ -126,15 +130,11 @@ PeakResult measure_variant(ClSession& s, int width, int chains, double target_se
   clReleaseMemObject(out);
   clReleaseKernel(kernel);
   clReleaseProgram(program);
-  const double fmas = double(global) * width * chains * iterations;
-  return {width, chains, 2.0 * fmas / best * 1e-9};
+  return double(global) * width * chains * iterations / best;
 }
 
-}  // namespace
-
-std::vector<PeakResult> measure_fp64_peak(const std::string& platform_name, const std::string& device_name,
-                                          double target_seconds) {
-  ClSession s;
+// A session on arcus' device, by its platform and device names.
+void open_session(ClSession& s, const std::string& platform_name, const std::string& device_name) {
   cl_platform_id platform;
   s.device = find_device(platform_name, device_name, &platform);
   clGetDeviceInfo(s.device, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof s.compute_units, &s.compute_units, nullptr);
@@ -143,12 +143,33 @@ std::vector<PeakResult> measure_fp64_peak(const std::string& platform_name, cons
   check(err, "clCreateContext");
   s.queue = clCreateCommandQueue(s.context, s.device, CL_QUEUE_PROFILING_ENABLE, &err);
   check(err, "clCreateCommandQueue");
+}
 
+}  // namespace
+
+std::vector<PeakResult> measure_fp64_peak(const std::string& platform_name, const std::string& device_name,
+                                          double target_seconds) {
+  ClSession s;
+  open_session(s, platform_name, device_name);
   // double8 fills one AVX-512 register; double16 two.  16 × double8 or 8 × double16
   // chains use 16 of the 32 vector registers, leaving room for a, b and the loop.
   const struct { int width, chains; } variants[] = {{8, 8}, {8, 16}, {16, 8}};
   std::vector<PeakResult> results;
-  for (const auto& v : variants) results.push_back(measure_variant(s, v.width, v.chains, target_seconds));
+  for (const auto& v : variants)
+    results.push_back({v.width, v.chains, 2e-9 * measure_variant(s, Operation::Fma, v.width, v.chains, target_seconds)});
+  return results;
+}
+
+std::vector<DivisionResult> measure_fp64_division(const std::string& platform_name, const std::string& device_name,
+                                                  double target_seconds) {
+  ClSession s;
+  open_session(s, platform_name, device_name);
+  // The divider is not pipelined like the FMA units (a zmm vdivpd issues every ~16
+  // cycles, latency ~23): 4 chains already cover its latency, 8 show it does not grow.
+  const struct { int width, chains; } variants[] = {{8, 4}, {8, 8}};
+  std::vector<DivisionResult> results;
+  for (const auto& v : variants)
+    results.push_back({v.width, v.chains, measure_variant(s, Operation::Division, v.width, v.chains, target_seconds)});
   return results;
 }
 

@@ -281,8 +281,14 @@ bool run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
     dev.path = std::make_unique<DeviceBuffer>(ctx, static_cast<size_t>(path_bytes), "record_path");
   std::shared_ptr<DeviceBuffer>& data = field->device_data[single ? 1 : 0];
   if (!data && !field->data.empty()) {
-    std::vector<Real> values(field->data.begin(), field->data.end());
-    data = std::make_shared<DeviceBuffer>(ctx, values.size() * sizeof(Real), "the field's data", values.data());
+    // Doubles go up as they are; only float needs a converted copy on the way.
+    const size_t n = field->data.size();
+    if (single) {
+      const std::vector<float> values(field->data.begin(), field->data.end());
+      data = std::make_shared<DeviceBuffer>(ctx, n * sizeof(float), "the field's data", values.data());
+    } else {
+      data = std::make_shared<DeviceBuffer>(ctx, n * sizeof(double), "the field's data", field->data.data());
+    }
   }
 
   KernelCall kernel(program, "arcus_advance");
