@@ -101,8 +101,9 @@ TEST_F(Crossings, FixedStepMethodsEndOnTheirOwnPath) {
     }
     // RK4 at this step is accurate enough to meet the closed form too (its global error
     // is below 1e-6 m here, the chord's 6e-4 m).
-    if (m == ARCUS_METHOD_RK4)
+    if (m == ARCUS_METHOD_RK4) {
       for (size_t i = 0; i < r.size(); ++i) EXPECT_LT(distance(t.pos(i), exact(r.direction(i)).position), 1e-6);
+    }
   }
 }
 

@@ -24,10 +24,23 @@ TEST_F(EdgeCases, CallersFirstDp45StepIsCappedAndCannotJumpOverALens) {
   p.step = 20.0;
   Trace t = trace(ctx(), lens.get(), p, rays);
   ASSERT_EQ(t.status, ARCUS_SUCCESS) << last_error();
-  // A ray at impact parameter R/2 leaves the lens bent towards the focus (R, 0, 0):
-  // well off its entry direction (a straight pass would keep (1, 0, 0)).
-  EXPECT_LT(t.dir(0)[1], -0.5);
-  EXPECT_GT(t.steps[0], 10u);
+  // A ray at impact parameter b = R/2 passes the focus F = (R, 0, 0) and leaves along
+  // (sqrt(1 − b²), −b, 0) (test_closed_forms.cpp): it ends on that line.  A straight pass
+  // would keep (1, 0, 0) and end 0.5 m off it.  Bounds: dp45_bound over ≤ 20 m, turning π
+  // inside the lens (scale R = 1) and two kinks at its surface; the line's distance from
+  // the end errs by no more than the end point.
+  const V3 exit_dir{std::sqrt(0.75), -0.5, 0.0};
+  PathScale scale{10.02 + 20.0, 20.0};  // |r_end| ≤ |origin| + L
+  scale.turning = kPi;
+  scale.kinks = 2;
+  const V3 off = (t.pos(0) - V3{1, 0, 0});
+  const double from_line = norm(off - dot(off, exit_dir) * exit_dir);
+  std::printf("%.3e m off the exit line (bound %.3e), direction off by %.3e rad (bound %.3e)\n", from_line,
+              dp45_bound(1e-10, 1e-12, scale), angle_between(t.dir(0), exit_dir),
+              dp45_direction_bound(1e-10, 1e-12, scale, 1.0));
+  EXPECT_LT(from_line, dp45_bound(1e-10, 1e-12, scale));
+  EXPECT_LT(angle_between(t.dir(0), exit_dir), dp45_direction_bound(1e-10, 1e-12, scale, 1.0));
+  EXPECT_GT(dot(off, exit_dir), 0.0) << "the ray must be past the focus";
 }
 
 // The error callback runs after the context's lock is released, so it may call arcus.

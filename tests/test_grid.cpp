@@ -13,13 +13,15 @@ using namespace arcus_test;
 namespace {
 
 class Grid : public ArcusTest {
- protected:
+ public:
   struct Spec {
     uint32_t dims[3];
     V3 origin, spacing;
     std::vector<double> values;
     double at(uint32_t i, uint32_t j, uint32_t k) const { return values[(size_t(k) * dims[1] + j) * dims[0] + i]; }
   };
+
+ protected:
   // Reference: trilinear interpolation of the clamped point; the gradient is the
   // interpolant's derivative, zero along an axis on which the point lies outside.
   static double reference(const Spec& s, const V3& p, V3* grad) {
@@ -123,7 +125,10 @@ TEST_F(Grid, OutsideValuesAreClampedWithZeroGradientAcross) {
   }
 }
 
-TEST_F(Grid, FilesInBothScalarTypesEqualTheInMemoryGrid) {
+TEST_F(Grid, DeterminismFilesInBothScalarTypesEqualTheInMemoryGrid) {
+  // Determinism (the same data through two constructors gives the same numbers, bit for
+  // bit), and the file's values are the data: against the test's own trilinear
+  // reference() of the values written (rounded to float for the float32 file).
   const Spec s = random_spec(3);
   auto mem = make(s);
   ASSERT_TRUE(mem);
@@ -162,47 +167,80 @@ TEST_F(Grid, FilesInBothScalarTypesEqualTheInMemoryGrid) {
     EXPECT_EQ(ga, gb);
     EXPECT_EQ(n_at(g32.get(), p, &ga), n_at(mem32.get(), p, &gb));
     EXPECT_EQ(ga, gb);
+    // A few dozen roundings of numbers ≈ 1, as in TrilinearValuesAndGradientsMatchAHostReference.
+    V3 want_g;
+    EXPECT_NEAR(n_at(g64.get(), p, &ga), reference(s, p, &want_g), 1e-14);
+    EXPECT_LT(distance(ga, want_g), 1e-13);
+    EXPECT_NEAR(n_at(g32.get(), p, &ga), reference(s32, p, &want_g), 1e-14);
+    EXPECT_LT(distance(ga, want_g), 1e-13);
   }
+  // The float32 file really holds floats: its grid differs from the double one.
+  EXPECT_NE(n_at(g32.get(), {0.1, 1.0, 2.7}), n_at(g64.get(), {0.1, 1.0, 2.7}));
 }
 
+// n = 1 + g·x on x ∈ [0, 1] (exact in trilinear form), clamped outside: n = 1 for x < 0
+// and 1 + g for x > 1, uniform in y and z everywhere.  A ray from x < 0 runs straight to
+// x = 0, follows a catenary (gradient along x) to x = 1, then runs straight again.
+struct Ramp {
+  static constexpr double g = 0.5;
+  static Grid::Spec spec() {
+    Grid::Spec s{{5, 2, 2}, {0, -0.5, -0.5}, {0.25, 1, 1}, {}};
+    for (uint32_t k = 0; k < 2; ++k)
+      for (uint32_t j = 0; j < 2; ++j)
+        for (uint32_t i = 0; i < 5; ++i) s.values.push_back(1.0 + g * 0.25 * i);
+    return s;
+  }
+  // The end state after arc L from o (x < 0) along d, and the scale of the path for the
+  // bounds: its turning, and the kinks of ∇n it crosses (the faces x = 0 and x = 1).
+  static RayState end(const V3& o, const V3& dir, double L, PathScale* scale) {
+    const V3 d = normalize(dir);
+    *scale = PathScale{0.0, L};
+    scale->n_kink = 1.0 + g;
+    RayState r;
+    if (d[0] <= 0) {
+      r = {o + L * d, d};
+    } else {
+      const double s1 = -o[0] / d[0];  // straight to x = 0
+      const V3 r1 = o + s1 * d;
+      // Inside: v_x = n·d_x grows by g per metre; it leaves at n = 1 + g where
+      // v_x = sqrt((1 + g)² − A²), A = |v across x| = 1·|d_yz| (conserved).
+      const double A = std::hypot(d[1], d[2]);
+      const double s2 = (std::sqrt((1 + g) * (1 + g) - A * A) - d[0]) / g;
+      const RayState in = catenary_end(1.0, {g, 0, 0}, r1, d, s2);
+      EXPECT_NEAR(in.pos[0], 1.0, 1e-12) << "closed form";
+      r = {in.pos + (L - s1 - s2) * in.dir, in.dir};
+      scale->kinks = 2;
+      scale->turning = angle_between(d, in.dir);
+    }
+    scale->r_end = norm(r.pos);
+    return r;
+  }
+  static Rays rays() {
+    Rays r;
+    r.add({-2, 0, 0}, {1, 0, 0});
+    r.add({-2, 0.3, 0.1}, {1, 0.3, -0.2});
+    r.add({-2, 5.0, -3.0}, {0.6, -0.8, 0});  // beside the grid in y: same field
+    r.add({-2, 0, 0}, {-1, 0.5, 0.5});       // moving away: straight all the way
+    return r;
+  }
+};
+
 TEST_F(Grid, RayStartingOutsideTravelsStraightUntilItEnters) {
-  // n = 1 + 0.5·x on x ∈ [0, 1], clamped outside: n = 1 for x < 0 and 1.5 for x > 1,
-  // uniform in y and z everywhere.  A ray from x = −2 runs straight to x = 0, follows a
-  // catenary (gradient along x) to x = 1, then runs straight again.
-  const double g = 0.5, L = 8.0, rtol = 1e-10, atol = 1e-13;
-  Spec s{{5, 2, 2}, {0, -0.5, -0.5}, {0.25, 1, 1}, {}};
-  for (uint32_t k = 0; k < 2; ++k)
-    for (uint32_t j = 0; j < 2; ++j)
-      for (uint32_t i = 0; i < 5; ++i) s.values.push_back(1.0 + g * 0.25 * i);
-  auto field = make(s);
+  const double L = 8.0, rtol = 1e-10, atol = 1e-13;
+  auto field = make(Ramp::spec());
   ASSERT_TRUE(field);
-  Rays rays;
-  rays.add({-2, 0, 0}, {1, 0, 0});
-  rays.add({-2, 0.3, 0.1}, {1, 0.3, -0.2});
-  rays.add({-2, 5.0, -3.0}, {0.6, -0.8, 0});  // beside the grid in y: same field
-  rays.add({-2, 0, 0}, {-1, 0.5, 0.5});       // moving away: straight all the way
+  const Rays rays = Ramp::rays();
   const Trace t = trace(ctx(), field.get(), dp45(L, rtol, atol), rays);
   ASSERT_EQ(t.status, ARCUS_SUCCESS);
   for (size_t i = 0; i < rays.size(); ++i) {
     const V3 o = rays.origin(i), d = normalize(rays.direction(i));
     EXPECT_EQ(t.ray_status[i], ARCUS_RAY_DONE);
-    V3 want_pos, want_dir;
-    if (d[0] <= 0) {
-      want_pos = o + L * d;
-      want_dir = d;
-    } else {
-      const double s1 = -o[0] / d[0];  // straight to x = 0
-      const V3 r1 = o + s1 * d;
-      // Inside: v_x = n·d_x grows by g per metre; it leaves at n = 1.5 where
-      // v_x = sqrt(1.5² − A²), A = |v across x| = 1·|d_yz| (conserved).
-      const double A = std::hypot(d[1], d[2]);
-      const double s2 = (std::sqrt(1.5 * 1.5 - A * A) - d[0]) / g;
-      const RayState in = catenary_end(1.0, {g, 0, 0}, r1, d, s2);
-      ASSERT_NEAR(in.pos[0], 1.0, 1e-12);
-      want_pos = in.pos + (L - s1 - s2) * in.dir;
-      want_dir = in.dir;
+    PathScale scale{0.0, L};
+    const RayState want = Ramp::end(o, d, L, &scale);
+    if (d[0] > 0) {
       // Before it enters the ray is straight: the field outside is uniform.  Traced to
       // just before x = 0 it must sit on its line (to rounding).
+      const double s1 = -o[0] / d[0];
       Rays before;
       before.add(o, d);
       const Trace b = trace(ctx(), field.get(), dp45(0.99 * s1, rtol, atol), before);
@@ -210,12 +248,46 @@ TEST_F(Grid, RayStartingOutsideTravelsStraightUntilItEnters) {
       EXPECT_LT(distance(b.pos(0), o + (0.99 * s1) * d), 1e-13 * (norm(o) + s1)) << "ray " << i;
       EXPECT_LT(distance(b.dir(0), d), 1e-15) << "ray " << i;
     }
-    const double bound = dp45_bound(t.steps[i], rtol, atol, norm(o) + L, 1.5, 1.0, L);
-    EXPECT_LT(distance(t.pos(i), want_pos), bound) << "ray " << i << " steps " << t.steps[i];
-    EXPECT_LT(angle_between(t.dir(i), want_dir), bound) << "ray " << i;
+    // The catenary's least radius of curvature is A/g ≥ 1/g·|d_yz| — for the axial ray
+    // it does not bend at all; 0.1 m bounds every ray's from below.
+    const double bound = dp45_bound(rtol, atol, scale);
+    const double dir_bound = dp45_direction_bound(rtol, atol, scale, 0.1);
+    std::printf("ray %zu (%g kinks): error %.3e m (bound %.3e), direction %.3e rad (bound %.3e)\n", i, scale.kinks,
+                distance(t.pos(i), want.pos), bound, angle_between(t.dir(i), want.dir), dir_bound);
+    EXPECT_LT(distance(t.pos(i), want.pos), bound) << "ray " << i;
+    EXPECT_LT(angle_between(t.dir(i), want.dir), dir_bound) << "ray " << i;
   }
   // The bending is real: the second ray ends far from its straight continuation.
   EXPECT_GT(distance(t.pos(1), rays.origin(1) + L * normalize(rays.direction(1))), 0.1);
+}
+
+TEST_F(Grid, RayThroughTheGridInFloatPrecisionFollowsTheClosedForm) {
+  // The ramp in float (ARCUS_PRECISION_FLOAT): DP45 at rtol 1e-6 (above float's
+  // resolution, so the controller can meet it) against the closed form, within dp45_bound
+  // at that tolerance plus float's rounding (float_rounding_bound).  The grid's values
+  // 1 + 0.125·i are exact in float, so the field itself is not rounded.
+  const double L = 8.0, rtol = 1e-6, atol = 1e-8;
+  auto field = make(Ramp::spec());
+  ASSERT_TRUE(field);
+  const Rays rays = Ramp::rays();
+  arcus_advance_params p = dp45(L, rtol, atol);
+  p.precision = ARCUS_PRECISION_FLOAT;
+  const Trace t = trace(ctx(), field.get(), p, rays);
+  ASSERT_EQ(t.status, ARCUS_SUCCESS) << last_error();
+  ASSERT_TRUE(t.features & ARCUS_FEATURE_FLOAT);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    PathScale scale{0.0, L};
+    const RayState want = Ramp::end(rays.origin(i), rays.direction(i), L, &scale);
+    const double bound = dp45_bound(rtol, atol, scale) + float_rounding_bound(scale);
+    std::printf("float ray %zu: error %.3e m (bound %.3e)\n", i, distance(t.pos(i), want.pos), bound);
+    EXPECT_EQ(t.ray_status[i], ARCUS_RAY_DONE) << "ray " << i;
+    EXPECT_LT(distance(t.pos(i), want.pos), bound) << "ray " << i;
+  }
+  // The bending dwarfs the bound: a float run that lost the grid would fail.
+  PathScale scale{0.0, L};
+  const RayState bent = Ramp::end(rays.origin(1), rays.direction(1), L, &scale);
+  EXPECT_GT(distance(bent.pos, rays.origin(1) + L * normalize(rays.direction(1))),
+            10.0 * (dp45_bound(rtol, atol, scale) + float_rounding_bound(scale)));
 }
 
 }  // namespace

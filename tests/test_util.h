@@ -190,7 +190,6 @@ struct Trace {
   size_t size() const { return lengths.size(); }
   V3 pos(size_t i) const { return {positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]}; }
   V3 dir(size_t i) const { return {directions[3 * i], directions[3 * i + 1], directions[3 * i + 2]}; }
-  uint64_t max_steps() const { return steps.empty() ? 0 : *std::max_element(steps.begin(), steps.end()); }
 };
 
 // Runs arcus_advance and reads back every end state (when a job came back).
@@ -215,19 +214,94 @@ inline Trace trace(arcus_context_t* ctx, arcus_field_t* field, const arcus_advan
   return t;
 }
 
-// ---- error bounds --------------------------------------------------------------------
-// Global end-point error bound of an adaptive DP45 run over arc length L in which the
-// controller accepted `steps` steps.  Each accepted step commits a local error of at most
-// (atol + rtol·|y|) per component of y = (r, v) — times √6 because the controller may
-// use an RMS norm over the six components — and an error δv in v = n·dr/ds at arc s moves
-// the end point by at most δv·(L − s)/n_min.  Summing over the steps, with |r| ≤ r_max
-// and |v| ≤ n_max along the path:
-//   |Δr| ≤ √6 · steps · [(atol + rtol·r_max) + (atol + rtol·n_max)·L/n_min] · amplification.
-// `amplification` bounds how much nearby rays diverge (1 for non-focusing media).
-inline double dp45_bound(uint64_t steps, double rtol, double atol, double r_max, double n_max, double n_min,
-                         double L, double amplification = 1.0) {
-  return std::sqrt(6.0) * double(steps) * ((atol + rtol * r_max) + (atol + rtol * n_max) * L / n_min) *
-         amplification;
+// ---- error bounds ----------------------------------------------------------------------
+// Bounds come from the tolerances and the closed form alone, never from what a run
+// reports (its step count): a bound that grows with the implementation's output cannot
+// catch an implementation that takes too many steps or errs on each.
+//
+// DP45's end-point error.  The controller accepts a step when its embedded estimate
+// |y5 − y4| is within atol + rtol·|y| in each component of y = (r, v).  Along the path
+// |r| ≤ |r_end| + L (no point lies farther than L from the end), and an error δv in
+// v = n·dr/ds moves the end by ≤ δv·L/n with |v| = n, so one step's tolerance moves the
+// end by at most  tol = rtol·(|r_end| + L) + atol·(1 + L/n_min).  The fifth-order
+// solution the controller keeps errs by O(h⁶) a step, ≈ h/ℓ of the O(h⁵) estimate (ℓ:
+// the path's radius of curvature, or the medium's length scale if shorter), so the
+// steps add up to tol·∫ds/ℓ (`turning`: the path's total turning where it curves on its
+// own scale) however many there are: the error is proportional to the tolerance (Hairer,
+// Nørsett & Wanner I, §II.4).  kDp45Safety: error / ((1 + turning)·tol) stayed below 1.6
+// for rtol 1e-5..1e-12 on every smooth closed form of these suites, below 1 for rtol ≤
+// 1e-7 (the worst: the fish-eye arcs of test_orders.cpp; catenaries stay below 0.03).
+//
+// Where ∇n jumps (a lens surface, an atmosphere's layer boundary, a grid's face) the
+// estimate and the kept solution weigh the stages on either side of the jump
+// differently, and their ratio is fixed by the tableau: dp45_kink_factor().  Each such
+// kink may leave an error of that factor times v's tolerance in v, carried ≤ L to the end.
+constexpr double kDp45Safety = 10.0;
+
+// max over the place θ ∈ (0, 1) of a jump of dv/ds inside a step of |B(θ)|/|E(θ)|: B the
+// fifth-order solution's error (Σ_{c_i > θ} b_i − (1 − θ)), E the estimate (Σ_{c_i > θ}
+// e_i), from the published Dormand–Prince weights (stage 7 is the next step's first).
+// ≈ 170, for a jump just before 3/10 of the step.
+inline double dp45_kink_factor() {
+  const double c[7] = {0.0, 1.0 / 5, 3.0 / 10, 4.0 / 5, 8.0 / 9, 1.0, 1.0};
+  const double b[7] = {35.0 / 384, 0.0, 500.0 / 1113, 125.0 / 192, -2187.0 / 6784, 11.0 / 84, 0.0};
+  const double e[7] = {71.0 / 57600, 0.0, -71.0 / 16695, 71.0 / 1920, -17253.0 / 339200, 22.0 / 525, -1.0 / 40};
+  double worst = 0.0;
+  for (int k = 1; k < 7; ++k) {  // θ between c[k−1] and c[k]: stages k.. see the jump
+    if (c[k] == c[k - 1]) continue;
+    double B = 0.0, E = 0.0;
+    for (int i = k; i < 7; ++i) {
+      B += b[i];
+      E += e[i];
+    }
+    for (double theta : {c[k - 1], c[k]}) worst = std::max(worst, std::fabs(B - (1.0 - theta)) / std::fabs(E));
+  }
+  return worst;
+}
+
+// What a closed form says about a path, for the bounds below.
+struct PathScale {
+  double r_end;          // |r| at the end
+  double length;         // L
+  double turning = 0.0;  // ∫ds/ℓ (see above)
+  double kinks = 0.0;    // jumps of ∇n crossed
+  double n_min = 1.0;    // least n along the path
+  double n_kink = 1.0;   // the largest n at a kink (v's tolerance there is rtol·n)
+};
+inline double dp45_bound(double rtol, double atol, const PathScale& p) {
+  const double tol = rtol * (p.r_end + p.length) + atol * (1.0 + p.length / p.n_min);
+  const double kink_v = (rtol * p.n_kink + atol) * p.length / p.n_min;
+  return kDp45Safety * (1.0 + p.turning) * tol + dp45_kink_factor() * p.kinks * kink_v;
+}
+// DP45's error in v = n·dr/ds at the end (n ≤ n_max on the path): its tolerance
+// atol + rtol·n a step, summed as in dp45_bound, plus what each kink leaves.
+inline double dp45_v_bound(double rtol, double atol, const PathScale& p, double n_max) {
+  return (kDp45Safety * (1.0 + p.turning) + dp45_kink_factor() * p.kinks) * (rtol * n_max + atol);
+}
+// End-direction error (radians): v's own tolerance (rtol + atol/n a step) summed as
+// above, plus the turn a position error δr gives the path, ≤ δr/ℓ with ℓ the path's
+// smallest radius of curvature (or the medium's length scale).
+inline double dp45_direction_bound(double rtol, double atol, const PathScale& p, double ell) {
+  return kDp45Safety * (1.0 + p.turning) * (rtol + atol / p.n_min) +
+         dp45_kink_factor() * p.kinks * (rtol * p.n_kink + atol) / p.n_min + dp45_bound(rtol, atol, p) / ell;
+}
+
+// Float rounding of a run (ARCUS_PRECISION_FLOAT): float resolves a coordinate to
+// ε_f = 2⁻²⁴ ≈ 6e-8 of its size.  The kernels carry each step's update with Kahan
+// compensation, so the state's own rounding does not pile up with the step count
+// (uncompensated it would grow as N·ε_f·|r|); what remains are the stages' roundings,
+// a few ε_f of each increment (≤ L in all) and of each stage point (|r| ≤ |r_end| + L,
+// which moves ∇n), propagated like any error along the path (1 + turning).  4: "a few";
+// the measured differences between float and double runs of the same fixed steps stayed
+// below 1.1 ε_f·(|r_end| + L)·(1 + turning) (the most: 2000 steps through 20 km of air).
+constexpr double kFloatEps = 5.9604644775390625e-8;  // 2⁻²⁴
+inline double float_rounding_bound(const PathScale& p) {
+  return 4.0 * kFloatEps * (p.r_end + p.length) * (1.0 + p.turning);
+}
+
+// Observed order of convergence between two errors whose steps differ by `ratio`.
+inline double observed_order(double error_coarse, double error_fine, double ratio = 2.0) {
+  return std::log(error_coarse / error_fine) / std::log(ratio);
 }
 
 // ---- closed-form ray paths -------------------------------------------------------------
@@ -310,17 +384,75 @@ inline RayState linear_n2_end(double a, const V3& K, const V3& r0, const V3& d, 
 // by |q − p'| = |ρ|:  ρ = −|p − p'|² / (2 m·(p − p')).  After arc L (angle φ = L/|ρ|):
 //   r = q + cos φ (p − q) + |ρ| sin φ d,   d_end = cos φ d − sin φ (p − q)/|ρ|.
 // p must not be parallel to d (a ray through the centre is a straight line).
-inline RayState fisheye_end(const V3& c, double R, const V3& P, const V3& d, double L) {
+struct Circle {
+  V3 centre;  // absolute
+  double radius;
+};
+inline Circle fisheye_circle(const V3& c, double R, const V3& P, const V3& d) {
   const V3 dh = normalize(d);
   const V3 p = P - c;
   const V3 pp = (-R * R / dot(p, p)) * p;
   const V3 m = normalize(p - dot(p, dh) * dh);
   const double rho = -dot(p - pp, p - pp) / (2.0 * dot(m, p - pp));
-  const V3 q = p + rho * m;
-  const double r = std::fabs(rho);
-  const double phi = L / r;
-  return {c + q + std::cos(phi) * (p - q) + (r * std::sin(phi)) * dh,
-          normalize(std::cos(phi) * dh - (std::sin(phi) / r) * (p - q))};
+  return {c + p + rho * m, std::fabs(rho)};
+}
+inline RayState fisheye_end(const V3& c, double R, const V3& P, const V3& d, double L) {
+  const V3 dh = normalize(d);
+  const Circle k = fisheye_circle(c, R, P, d);
+  const V3 a = P - k.centre;
+  const double phi = L / k.radius;
+  return {k.centre + std::cos(phi) * a + (k.radius * std::sin(phi)) * dh,
+          normalize(std::cos(phi) * dh - (std::sin(phi) / k.radius) * a)};
+}
+
+// Luneburg lens, inside: n² = 2 − |r − c|²/R².  With dτ = ds/n the ray equation becomes
+// d²r/dτ² = ∇(n²)/2 = −(r − c)/R², a harmonic oscillator: p = r − c runs on the ellipse
+// p(τ) = p0 cos(τ/R) + R v0 sin(τ/R) centred on c (v0 = n(P)·d̂), with |dp/dτ| = n.  The
+// arc length s(τ) = ∫0^τ |dp/dτ| dτ' is elliptic: composite 8-point Gauss–Legendre (the
+// integrand is smooth on the scale R: panels of R/10 leave ~1e-16 relative), and Newton
+// for the τ where s = L.  Valid while the path stays inside the lens (inside_radius).
+struct LuneburgEllipse {
+  V3 c, p0, v0;
+  double R;
+  LuneburgEllipse(const V3& c_, double R_, const V3& P, const V3& d) : c(c_), p0(P - c_), R(R_) {
+    v0 = std::sqrt(2.0 - dot(p0, p0) / (R * R)) * normalize(d);
+  }
+  V3 position(double tau) const { return c + std::cos(tau / R) * p0 + (R * std::sin(tau / R)) * v0; }
+  V3 velocity(double tau) const { return (-std::sin(tau / R) / R) * p0 + std::cos(tau / R) * v0; }
+  double arc_length(double tau) const {
+    static const double x[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
+    static const double w[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+    const int panels = 1 + int(std::fabs(tau) / (0.1 * R));
+    const double width = tau / panels;
+    double s = 0.0;
+    for (int k = 0; k < panels; ++k) {
+      const double mid = (k + 0.5) * width;
+      for (int j = 0; j < 4; ++j)
+        s += w[j] * (norm(velocity(mid - 0.5 * width * x[j])) + norm(velocity(mid + 0.5 * width * x[j])));
+    }
+    return 0.5 * width * s;
+  }
+  double tau_at(double L) const {
+    double tau = L / norm(v0);
+    for (int i = 0; i < 50; ++i) {
+      const double dt = (arc_length(tau) - L) / norm(velocity(tau));
+      tau -= dt;
+      if (std::fabs(dt) <= 1e-15 * std::fabs(tau)) break;
+    }
+    return tau;
+  }
+  // The largest |r − c| on the path up to arc L (sampled finely: a precondition check).
+  double inside_radius(double L) const {
+    const double tau = tau_at(L);
+    double r = 0.0;
+    for (int k = 0; k <= 1000; ++k) r = std::max(r, norm(position(tau * k / 1000.0) - c));
+    return r;
+  }
+};
+inline RayState luneburg_end(const V3& c, double R, const V3& P, const V3& d, double L) {
+  const LuneburgEllipse e(c, R, P, d);
+  const double tau = e.tau_at(L);
+  return {e.position(tau), normalize(e.velocity(tau))};
 }
 
 }  // namespace arcus_test
