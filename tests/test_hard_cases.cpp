@@ -314,6 +314,42 @@ TEST_F(HardCases, InversionLayersCrossedByDP45MatchTheSnellQuadrature) {
   }
 }
 
+TEST_F(HardCases, LooseToleranceStepsDoNotJumpOverAThinLayer) {
+  // At rtol 1e-6 one adaptive step of a ray sinking at 1.5° spanned the 300–330 m layer
+  // with no stage inside it, so neither the step nor its error estimate saw the layer:
+  // the end was 3 m off, the whole of the layer's effect.  DP45's steps now span at most
+  // half the thinnest layer in height (field_step_cap), down to a layer of 3 m.  The
+  // kink bound of dp45_bound is too wide to tell (169× v's tolerance per kink): the
+  // check is that the error is a small part of what the thin layer does to the ray.
+  for (double thickness : {30.0, 3.0}) {
+    const std::vector<double> kinks{100.0, 150.0, 300.0, 300.0 + thickness};
+    const std::vector<arcus_inversion> inv{{100.0, 150.0, -8.0}, {300.0, 300.0 + thickness, -5.0}};
+    auto field = atmosphere(atmosphere_desc(0, inv));
+    auto without = atmosphere(atmosphere_desc(0, {inv[0]}));
+    ASSERT_TRUE(field && without);
+    Rays rays;
+    rays.add({0, 400, 0}, {std::cos(rad(-1.5)), std::sin(rad(-1.5)), 0.1});
+    rays.add({0, 400, 0}, {std::cos(rad(-0.8)), std::sin(rad(-0.8)), 0.0});
+    const double L = 20000.0;
+    // (At 1e-5 a kink inside a step still costs up to 17 % of the layer's effect: the
+    // tolerance asked for is 0.2 m over this path, and a kink multiplies it.)
+    for (double rtol : {1e-6, 1e-7}) {
+      const Trace t = trace(ctx(), field.get(), dp45(L, rtol, rtol * 1e-3), rays);
+      ASSERT_EQ(t.status, ARCUS_SUCCESS);
+      for (size_t i = 0; i < rays.size(); ++i) {
+        const RayState want = flat_atmosphere_end(field.get(), rays.origin(i), rays.direction(i), L, kinks);
+        const RayState unlayered =
+            flat_atmosphere_end(without.get(), rays.origin(i), rays.direction(i), L, {100.0, 150.0});
+        const double err = distance(t.pos(i), want.pos), effect = distance(unlayered.pos, want.pos);
+        std::printf("layer %.0f m, rtol %.0e, ray %zu: %llu steps, error %.3e m; the layer moves the end %.3f m\n",
+                    thickness, rtol, i, (unsigned long long)t.steps[i], err, effect);
+        ASSERT_GT(effect, 0.3) << "test design: the thin layer must matter";
+        EXPECT_LT(err, 0.05 * effect) << "layer " << thickness << " rtol " << rtol << " ray " << i;
+      }
+    }
+  }
+}
+
 TEST_F(HardCases, AtmosphereInFloatPrecisionFollowsTheQuadratureAndTheDoubleRun) {
   // Flat atmospheres in float (ARCUS_PRECISION_FLOAT).  n − 1 ≈ 3e-4 is resolved to
   // ε_f/3e-4 ≈ 2e-4 of itself in float, and so is ∇n, which moves the mirage's rise

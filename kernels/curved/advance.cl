@@ -194,7 +194,7 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
   FOR_GROUPS(g) {
     REALV n;
     k1[g] = ray_derivative(MED(g), y[g], &n);
-    if (job.first_slice) h[g] = dp_initial_step(&job, y[g], k1[g]);
+    if (job.first_slice) h[g] = dp_initial_step(MED(g), &job, y[g], k1[g]);
   }
   /* Adaptive: every lane takes its own steps; the loop runs while any lane of any group
    * is active (neighbouring rays take similar step counts, so idle lanes cost little). */

@@ -34,7 +34,9 @@
  *   linear:     n0, vec = gradient            linear n²:  n0 = a, vec = k
  *   Luneburg:   vec = centre, inv_radius2     fish-eye:   n0, vec = centre, inv_radius2
  *   atmosphere: refractivity = (n−1)·T/p [K/Pa], earth_radius (of the sphere),
- *               geopotential_radius (US Standard Atmosphere 1976's r0), count = segments
+ *               geopotential_radius (US Standard Atmosphere 1976's r0), count = segments,
+ *               layer = the thinnest segment's thickness and layers_top = the height
+ *               of the last break (geometric metres): see field_step_cap
  *   grid:       origin, inv_spacing, dims                                           */
 #define ARCUS_DECLARE_FIELD_DESC(NAME, R, I) \
   typedef struct NAME {                      \
@@ -43,6 +45,8 @@
     R refractivity;                          \
     R earth_radius;                          \
     R geopotential_radius;                   \
+    R layer;                                 \
+    R layers_top;                            \
     R vec[3];                                \
     R origin[3];                             \
     R inv_spacing[3];                        \
@@ -260,6 +264,24 @@ ARCUS_INLINE void field_eval(const medium* m, REALV x, REALV y, REALV z, REALV* 
   } else {
     grid_eval(f, m->data, x, y, z, n, gx, gy, gz);
   }
+}
+
+/* The longest adaptive step the field allows from (r, v): an atmosphere's ∇n jumps at
+ * every layer boundary, and a step whose stages all land outside a thin layer (an
+ * inversion of a few metres) never sees it — the error estimate cannot either.  So,
+ * below the top of the layers, no step may span more than half the thinnest layer in
+ * height: every layer a ray crosses gets a stage inside.  A horizontal ray is not held
+ * back.  Other fields: no limit here (the host caps lenses and grids). */
+ARCUS_INLINE REALV field_step_cap(const medium* m, REALV x, REALV y, REALV z, REALV vx, REALV vy, REALV vz) {
+  const field_desc* f = m->f;
+  if (ARCUS_FIELD_KIND_OF(m) != ARCUS_KIND_ATMOSPHERE) return (REALV)INFINITY;
+  REALV radius = f->spherical ? sqrt(x * x + y * y + z * z) : y;
+  REALV height = f->spherical ? radius - f->earth_radius : y;
+  /* |dh/ds|: the direction's vertical component (v = n·dr/ds, |v| = n). */
+  REALV rise = f->spherical ? fabs(x * vx + y * vy + z * vz) / radius : fabs(vy);
+  REALV rate = rise / sqrt(vx * vx + vy * vy + vz * vz);
+  REALV cap = RC(0.5) * f->layer / rate;
+  return SEL(cap, (REALV)INFINITY, height > f->layers_top);
 }
 
 #endif /* ARCUS_FIELD_H */

@@ -207,6 +207,7 @@ ARCUS_INLINE void dp_attempt(const medium* m, const advance_desc* job, ray6* y, 
 
     REALV h_next = h_taken[g] * dp_step_factor(norm);
     if (job->max_step > RC(0)) h_next = fmin(h_next, (REALV)job->max_step);
+    h_next = fmin(h_next, field_step_cap(GROUP_MEDIUM(m, g), y[g].x, y[g].y, y[g].z, y[g].vx, y[g].vy, y[g].vz));
     h[g] = SEL(h[g], h_next, active);
 
     MASKV gave_up = reject & ((rejections[g] > (IDXV)job->max_rejections) | (h_taken[g] <= job->min_step));
@@ -222,8 +223,8 @@ ARCUS_INLINE void dp_attempt(const medium* m, const advance_desc* job, ray6* y, 
 
 /* The first trial step: the caller's, else 1% of the state's scale over the
  * derivative's (Hairer, Nørsett & Wanner's h0 heuristic, first stage); either way
- * within max_step and [min_step, length], as every later step. */
-ARCUS_INLINE REALV dp_initial_step(const advance_desc* job, ray6 y, ray6 k) {
+ * within max_step, the field's cap and [min_step, length], as every later step. */
+ARCUS_INLINE REALV dp_initial_step(const medium* m, const advance_desc* job, ray6 y, ray6 k) {
 #define DP_SCALE(c) (job->atol + job->rtol * fabs(y.c))
   REALV d0 = fmax(fmax(fabs(y.x) / DP_SCALE(x), fabs(y.y) / DP_SCALE(y)), fabs(y.z) / DP_SCALE(z));
   d0 = fmax(d0, fmax(fmax(fabs(y.vx) / DP_SCALE(vx), fabs(y.vy) / DP_SCALE(vy)), fabs(y.vz) / DP_SCALE(vz)));
@@ -234,6 +235,7 @@ ARCUS_INLINE REALV dp_initial_step(const advance_desc* job, ray6 y, ray6 k) {
   h = SEL(h, (REALV)RC(1e-6), !(h > RC(0)) | !isfinite(h));
   if (job->step > RC(0)) h = (REALV)job->step;
   if (job->max_step > RC(0)) h = fmin(h, (REALV)job->max_step);
+  h = fmin(h, field_step_cap(m, y.x, y.y, y.z, y.vx, y.vy, y.vz));
   return clamp(h, (REALV)job->min_step, (REALV)job->length);
 }
 #endif

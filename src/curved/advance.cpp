@@ -134,6 +134,8 @@ To field_desc_as(const From& f) {
   t.refractivity = f.refractivity;
   t.earth_radius = f.earth_radius;
   t.geopotential_radius = f.geopotential_radius;
+  t.layer = f.layer;
+  t.layers_top = f.layers_top;
   for (int a = 0; a < 3; ++a) {
     t.vec[a] = f.vec[a];
     t.origin[a] = f.origin[a];

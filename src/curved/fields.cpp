@@ -200,6 +200,13 @@ FieldBuild atmosphere(const arcus_atmosphere_desc& desc) {
   b.desc.earth_radius = ARCUS_EARTH_RADIUS;
   b.desc.geopotential_radius = kGeopotentialRadius;
   b.desc.count = static_cast<int32_t>(breaks.size());
+  // The thinnest layer in geometric height, and the height of the last break (above it
+  // the air is isothermal and smooth): DP45's steps span at most half of it (field.h).
+  auto geometric = [&](double H) { return R * H / (R - H); };
+  b.desc.layer = INFINITY;
+  for (size_t k = 0; k + 1 < breaks.size(); ++k)
+    b.desc.layer = std::min(b.desc.layer, geometric(breaks[k + 1]) - geometric(breaks[k]));
+  b.desc.layers_top = geometric(breaks.back());
   b.desc.refractivity = ciddor_refractivity(desc.wavelength);
   return b;
 }
