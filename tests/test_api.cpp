@@ -1,5 +1,6 @@
 // API basics: version, devices, ARCUS_DEVICE selection, reference counting, job
 // getters and paths, per-job feature bits, stats and the program cache.
+#include "scoped_env.h"
 #include "test_util.h"
 
 #include <cstdlib>
@@ -10,27 +11,6 @@ using namespace arcus_test;
 namespace {
 
 class Api : public ArcusTest {};
-
-// Sets an environment variable for one scope and restores the previous value.
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, const char* value) : name_(name) {
-    const char* old = std::getenv(name);
-    had_ = old != nullptr;
-    if (had_) old_ = old;
-    setenv(name, value, 1);
-  }
-  ~ScopedEnv() {
-    if (had_)
-      setenv(name_.c_str(), old_.c_str(), 1);
-    else
-      unsetenv(name_.c_str());
-  }
-
- private:
-  std::string name_, old_;
-  bool had_ = false;
-};
 
 TEST(Version, MacrosMatchTheLoadedLibrary) {
   int major = -1, minor = -1, patch = -1;

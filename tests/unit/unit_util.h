@@ -10,30 +10,11 @@
 #include <string>
 
 #include "arcus/arcus.h"
+#include "scoped_env.h"
 
 namespace arcus_unit {
 
-// Sets an environment variable for one scope and restores the previous value.
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, const std::string& value) : name_(name) {
-    if (const char* old = std::getenv(name)) {
-      had_ = true;
-      old_ = old;
-    }
-    setenv(name, value.c_str(), 1);
-  }
-  ~ScopedEnv() {
-    if (had_)
-      setenv(name_.c_str(), old_.c_str(), 1);
-    else
-      unsetenv(name_.c_str());
-  }
-
- private:
-  std::string name_, old_;
-  bool had_ = false;
-};
+using ::ScopedEnv;
 
 // A fresh directory, removed with its contents at the end of the scope.
 class TempDir {
