@@ -10,7 +10,25 @@ using namespace arcus_test;
 
 namespace {
 
-class Api : public ArcusTest {};
+class Api : public ArcusTest {
+ protected:
+  // One 100-ray DP45 job through n = 1 + 0.1·y, run twice on the suite's context.
+  struct TwoRuns {
+    FieldPtr field;
+    Rays rays;
+    Trace first, second;
+  };
+  static TwoRuns same_job_twice() {
+    TwoRuns r;
+    r.field = linear(1.0, {0, 0.1, 0});
+    for (int i = 0; i < 100; ++i) r.rays.add({0, 0.01 * i, 0}, {1, 0.001 * i, 0});
+    const arcus_advance_params p = dp45(5.0, 1e-9, 1e-12);
+    if (!r.field) return r;
+    r.first = trace(ctx(), r.field.get(), p, r.rays);
+    r.second = trace(ctx(), r.field.get(), p, r.rays);
+    return r;
+  }
+};
 
 TEST(Version, MacrosMatchTheLoadedLibrary) {
   int major = -1, minor = -1, patch = -1;
@@ -344,13 +362,9 @@ TEST_F(Api, FeaturesReportedPerJob) {
 }
 
 TEST_F(Api, SecondIdenticalJobHitsTheProgramCache) {
-  auto field = linear(1.0, {0, 0.1, 0});
-  ASSERT_TRUE(field);
-  Rays rays;
-  for (int i = 0; i < 100; ++i) rays.add({0, 0.01 * i, 0}, {1, 0.001 * i, 0});
-  const arcus_advance_params p = dp45(5.0, 1e-9, 1e-12);
-  const Trace first = trace(ctx(), field.get(), p, rays);
-  const Trace second = trace(ctx(), field.get(), p, rays);
+  const TwoRuns runs = same_job_twice();
+  ASSERT_TRUE(runs.field);
+  const Trace &first = runs.first, &second = runs.second;
   ASSERT_EQ(first.status, ARCUS_SUCCESS);
   ASSERT_EQ(second.status, ARCUS_SUCCESS);
   arcus_job_stats s1, s2;
@@ -377,13 +391,10 @@ TEST_F(Api, DeterminismTheSameJobTwiceGivesTheSameNumbers) {
   // Determinism only: the same program on the same input repeats itself bit for bit.
   // The numbers themselves are checked against the catenary in test_closed_forms.cpp
   // and here (dp45_bound).
-  auto field = linear(1.0, {0, 0.1, 0});
-  ASSERT_TRUE(field);
-  Rays rays;
-  for (int i = 0; i < 100; ++i) rays.add({0, 0.01 * i, 0}, {1, 0.001 * i, 0});
-  const arcus_advance_params p = dp45(5.0, 1e-9, 1e-12);
-  const Trace first = trace(ctx(), field.get(), p, rays);
-  const Trace second = trace(ctx(), field.get(), p, rays);
+  const TwoRuns runs = same_job_twice();
+  ASSERT_TRUE(runs.field);
+  const Rays& rays = runs.rays;
+  const Trace &first = runs.first, &second = runs.second;
   ASSERT_EQ(first.status, ARCUS_SUCCESS);
   ASSERT_EQ(second.status, ARCUS_SUCCESS);
   EXPECT_EQ(first.positions, second.positions);

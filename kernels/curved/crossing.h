@@ -34,17 +34,17 @@ ARCUS_INLINE void cross_box(const medium* m, const advance_desc* job, ray6 y0, r
   REALV g_lo = box_distance(job, y0), g_hi = box_distance(job, *y1);
   ray6 y_lo = y0, c_lo = comp0;
   IDXV side = 0; /* which end moved last: −1 the inner, +1 the outer (Illinois) */
-  MASKV todo = crossed;
-  for (int it = 0; it < ARCUS_CROSSING_ITERATIONS && ANY(todo); ++it) {
+  MASKV searching = crossed;
+  for (int it = 0; it < ARCUS_CROSSING_ITERATIONS && ANY(searching); ++it) {
     REALV t = t_lo - g_lo * (t_hi - t_lo) / (g_hi - g_lo);
     t = SEL(t, RC(0.5) * (t_lo + t_hi), !((t > t_lo) & (t < t_hi))); /* bisect when flat */
     ray6 c = comp0, yt;
     REALV n;
     method_steps(m, &y0, &yt, &c, t * h, &n, 1);
     REALV g = box_distance(job, yt);
-    MASKV done = todo & (fabs(g) <= job->cross_tol);
-    MASKV inner = todo & !(g > RC(0)); /* on or inside: the crossing lies beyond t */
-    MASKV outer = todo & (g > RC(0)) & !done;
+    MASKV done = searching & (fabs(g) <= job->cross_tol);
+    MASKV inner = searching & !(g > RC(0)); /* on or inside: the crossing lies beyond t */
+    MASKV outer = searching & (g > RC(0)) & !done;
     g_hi = SEL(g_hi, RC(0.5) * g_hi, inner & !done & (side == (IDXV)-1));
     g_lo = SEL(g_lo, RC(0.5) * g_lo, outer & (side == (IDXV)1));
     /* A point within the tolerance ends the search, on either side of the surface. */
@@ -57,7 +57,7 @@ ARCUS_INLINE void cross_box(const medium* m, const advance_desc* job, ray6 y0, r
     g_hi = SEL(g_hi, g, outer);
     side = SEL(side, (IDXV)-1, inner);
     side = SEL(side, (IDXV)1, outer);
-    todo &= !done;
+    searching &= !done;
   }
   /* Lanes that did not converge keep the last point inside the box. */
   y_lo.x = snap(y_lo.x, job->box_min[0], job->box_max[0], job->cross_tol, crossed);
