@@ -26,7 +26,8 @@
  *   thread to run jobs in parallel.  The last-error message is per context (shared by
  *   its threads); read it from the thread that saw the failure before making another
  *   call.  Retain and release are atomic.  A progress callback runs on the calling
- *   thread with the context's lock held: it must not call arcus on that context.
+ *   thread with the context's lock held: it must not call arcus on that context, nor
+ *   release the last reference to one of its objects.
  *
  * Environment
  *   ARCUS_DEVICE     the default device: an index, or part of the device/platform name
