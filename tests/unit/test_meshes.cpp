@@ -1,0 +1,184 @@
+// Mesh loading: the bundled meshes, each format written by OpenMesh and read back, and
+// every way a file can be wrong (status and a message naming the file).
+
+// OpenMesh's vectors leave their elements uninitialised on purpose; GCC 12 flags it.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.h"
+#include "geometry/mesh.h"
+#include "unit_util.h"
+
+namespace {
+
+using arcus::geometry::load_mesh;
+using arcus::geometry::Mesh;
+using arcus_unit::TempDir;
+
+using Triangle = std::array<double, 9>;
+
+// The triangles as coordinates, each rotated to start at its smallest vertex (so the
+// winding is kept but the starting vertex does not matter), sorted.
+std::vector<Triangle> triangles_of(const Mesh& m) {
+  std::vector<Triangle> out;
+  for (size_t t = 0; t < m.triangle_count(); ++t) {
+    std::array<std::array<double, 3>, 3> v;
+    for (int c = 0; c < 3; ++c)
+      for (int k = 0; k < 3; ++k) v[c][k] = m.positions[3 * m.triangles[3 * t + c] + k];
+    std::rotate(v.begin(), std::min_element(v.begin(), v.end()), v.end());
+    Triangle tri;
+    for (int c = 0; c < 3; ++c)
+      for (int k = 0; k < 3; ++k) tri[3 * c + k] = v[c][k];
+    out.push_back(tri);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// A square pyramid: one quad and four triangles, coordinates exact in float.
+OpenMesh::PolyMesh_ArrayKernelT<> pyramid() {
+  OpenMesh::PolyMesh_ArrayKernelT<> m;
+  using P = OpenMesh::Vec3f;
+  auto a = m.add_vertex(P(0, 0, 0)), b = m.add_vertex(P(1, 0, 0)), c = m.add_vertex(P(1, 0, 1)),
+       d = m.add_vertex(P(0, 0, 1)), top = m.add_vertex(P(0.5f, 1.25f, 0.5f));
+  m.add_face(std::vector<decltype(a)>{a, b, c, d});
+  m.add_face(std::vector<decltype(a)>{b, a, top});
+  m.add_face(std::vector<decltype(a)>{c, b, top});
+  m.add_face(std::vector<decltype(a)>{d, c, top});
+  m.add_face(std::vector<decltype(a)>{a, d, top});
+  return m;
+}
+
+// Runs load_mesh(path) expecting `status` and a message naming the file.
+void expect_error(const std::string& path, arcus_status status) {
+  try {
+    load_mesh(path);
+    ADD_FAILURE() << path << ": no error";
+  } catch (const arcus::Error& e) {
+    EXPECT_EQ(e.status(), status) << e.what();
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+}
+
+void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+TEST(Meshes, BundledMeshesLoad) {
+  const std::string dir = ARCUS_SOURCE_DIR "/data/meshes/";
+  const struct {
+    const char* file;
+    size_t triangles;
+    bool uvs;
+  } cases[] = {{"icosphere.obj", 1280, false}, {"torus.obj", 1024, true}, {"tower.ply", 528, false}};
+  for (const auto& c : cases) {
+    const Mesh m = load_mesh(dir + c.file);
+    EXPECT_EQ(m.triangle_count(), c.triangles) << c.file;
+    EXPECT_EQ(m.source, dir + c.file);
+    EXPECT_EQ(m.uvs.size(), c.uvs ? 2 * m.vertex_count() : 0u) << c.file;
+    for (double x : m.positions) ASSERT_TRUE(std::isfinite(x)) << c.file;
+    for (uint32_t i : m.triangles) ASSERT_LT(i, m.vertex_count()) << c.file;
+  }
+  // The icosphere's vertices lie on the unit sphere, to float's precision (OpenMesh
+  // reads coordinates as float).
+  const Mesh ico = load_mesh(dir + "icosphere.obj");
+  for (size_t v = 0; v < ico.vertex_count(); ++v) {
+    const double* p = &ico.positions[3 * v];
+    EXPECT_NEAR(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]), 1.0, 1e-7);
+  }
+  // The torus' texture coordinates span [0, 1]².
+  const Mesh torus = load_mesh(dir + "torus.obj");
+  EXPECT_EQ(*std::min_element(torus.uvs.begin(), torus.uvs.end()), 0.0);
+  EXPECT_EQ(*std::max_element(torus.uvs.begin(), torus.uvs.end()), 1.0);
+}
+
+TEST(Meshes, EveryFormatRoundTripsAndPolygonsAreTriangulated) {
+  TempDir dir;
+  auto poly = pyramid();
+  auto tri = pyramid();
+  tri.triangulate();
+  // The pyramid as load_mesh should give it: polygons as fans from their first vertex.
+  auto expected = [](const auto& om) {
+    Mesh m;
+    for (auto v : om.vertices())
+      for (int k = 0; k < 3; ++k) m.positions.push_back(om.point(v)[k]);
+    for (auto f : om.faces()) {
+      std::vector<uint32_t> ring;
+      for (auto v : om.fv_range(f)) ring.push_back(static_cast<uint32_t>(v.idx()));
+      for (size_t i = 1; i + 1 < ring.size(); ++i) m.triangles.insert(m.triangles.end(), {ring[0], ring[i], ring[i + 1]});
+    }
+    return triangles_of(m);
+  };
+  ASSERT_EQ(expected(poly).size(), 6u);
+  for (const char* ext : {"obj", "ply", "off", "stl", "OBJ"}) {
+    const std::string path = dir.path() + "/pyramid." + ext;
+    const bool stl = std::string(ext) == "stl";  // STL holds triangles only
+    ASSERT_TRUE(OpenMesh::IO::write_mesh(stl ? tri : poly, path)) << path;
+    const Mesh got = load_mesh(path);
+    EXPECT_EQ(got.source, path);
+    EXPECT_EQ(triangles_of(got), expected(stl ? tri : poly)) << ext;
+  }
+}
+
+TEST(Meshes, BadFilesNameTheFile) {
+  TempDir dir;
+  const std::string d = dir.path();
+  expect_error(d + "/missing.obj", ARCUS_ERROR_IO);
+  std::filesystem::create_directory(d + "/folder.obj");
+  expect_error(d + "/folder.obj", ARCUS_ERROR_IO);
+  write_text(d + "/empty.obj", "");
+  expect_error(d + "/empty.obj", ARCUS_ERROR_INVALID_ARGUMENT);
+  write_text(d + "/points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  expect_error(d + "/points.obj", ARCUS_ERROR_INVALID_ARGUMENT);
+  write_text(d + "/points.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n");
+  expect_error(d + "/points.off", ARCUS_ERROR_INVALID_ARGUMENT);
+  write_text(d + "/mesh.xyz", "v 0 0 0\n");
+  expect_error(d + "/mesh.xyz", ARCUS_ERROR_INVALID_ARGUMENT);
+  write_text(d + "/noext", "v 0 0 0\n");
+  expect_error(d + "/noext", ARCUS_ERROR_INVALID_ARGUMENT);
+  write_text(d + "/garbage.ply", "this is not a ply file\n");
+  expect_error(d + "/garbage.ply", ARCUS_ERROR_INVALID_ARGUMENT);
+  // Non-finite vertices, in a text format and in binary ones (where they are plain bits).
+  write_text(d + "/nan.off", "OFF\n3 1 0\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n");
+  expect_error(d + "/nan.off", ARCUS_ERROR_INVALID_ARGUMENT);
+  auto m = pyramid();
+  m.triangulate();
+  m.set_point(m.vertex_handle(2), OpenMesh::Vec3f(1, std::nanf(""), 1));
+  for (const char* ext : {"stl", "ply"}) {
+    const std::string path = d + "/nan." + ext;
+    ASSERT_TRUE(OpenMesh::IO::write_mesh(m, path, OpenMesh::IO::Options::Binary)) << path;
+    expect_error(path, ARCUS_ERROR_INVALID_ARGUMENT);
+  }
+  m.set_point(m.vertex_handle(2), OpenMesh::Vec3f(1, INFINITY, 1));
+  ASSERT_TRUE(OpenMesh::IO::write_mesh(m, d + "/inf.stl", OpenMesh::IO::Options::Binary));
+  expect_error(d + "/inf.stl", ARCUS_ERROR_INVALID_ARGUMENT);
+}
+
+TEST(Meshes, ZeroAreaTrianglesAreKept) {
+  TempDir dir;
+  const std::string path = dir.path() + "/flat.obj";
+  // A proper triangle, one with two coincident vertices and one with collinear ones.
+  write_text(path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\nf 1 2 3\nf 1 2 4\nf 1 5 6\n");
+  EXPECT_EQ(load_mesh(path).triangle_count(), 3u);
+}
+
+TEST(Meshes, TransformedAppliesTheAffineMatrix) {
+  Mesh m;
+  m.positions = {1, 2, 3, -1, 0, 0.5};
+  m.triangles = {0, 1, 1};
+  // x' = 2y + 1, y' = -x, z' = 3z - 2
+  const double M[12] = {0, 2, 0, 1, -1, 0, 0, 0, 0, 0, 3, -2};
+  const Mesh t = arcus::geometry::transformed(m, M);
+  EXPECT_EQ(t.positions, (std::vector<double>{5, -1, 7, 1, 1, -0.5}));
+  EXPECT_EQ(t.triangles, m.triangles);
+  const double bad[12] = {NAN, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+  EXPECT_THROW(arcus::geometry::transformed(m, bad), arcus::Error);
+}
+
+}  // namespace
