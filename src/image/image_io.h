@@ -1,0 +1,51 @@
+// Images in and out, all through OpenImageIO: EXR with every channel kept by name (the
+// renderer's colour and its per-pixel data), sRGB PNG for viewing, and any format OIIO
+// reads as linear RGB (textures, equirectangular skies).
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace arcus::image {
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<std::string> channels;  // names: "R", "G", "B", "hit_distance", ...
+  std::vector<float> pixels;          // width * height * channels.size(), row-major, top row first
+
+  // Index of the channel called `name`, or -1.
+  int channel_index(const std::string& name) const;
+};
+
+enum class ExrPixels { Float, Half };
+
+// Writes an OpenEXR file with every channel by name (OpenEXR stores them sorted by
+// name, so read them back by name, not position).  Float keeps values exactly; Half
+// keeps 11 bits, enough for colour, not for distances or counts.
+void write_exr(const std::string& path, const Image& image, ExrPixels pixels = ExrPixels::Float);
+
+// Writes an 8-bit sRGB PNG of the channels named R, G and B, each scaled by `exposure`,
+// encoded with the sRGB transfer function, clamped to [0, 1] and rounded.
+void write_png(const std::string& path, const Image& linear_rgb, double exposure = 1.0);
+
+// Reads the first image of any file OIIO reads as channels "R", "G", "B", linear float:
+// integer files (PNG, JPEG, 8/16-bit TIFF) are taken as sRGB-encoded and decoded with
+// the inverse transfer function unless they declare themselves linear; float files
+// (EXR, HDR) are read as they are.  Colour comes from the channels named R, G, B, else
+// the first three; one or two channels (grey, grey + alpha) give grey.  Alpha is
+// dropped, and colour is not multiplied by it.
+Image read_image(const std::string& path);
+
+// Reads the first image of a file with every channel as stored, by name, no colour
+// conversion: the counterpart of write_exr.
+Image read_channels(const std::string& path);
+
+// Bilinear sample of the first three channels at (u, v) in [0, 1]²: u = 0 is the left
+// edge, v = 0 the top edge, texel (i, j) is centred at ((i + ½) / width, (j + ½) / height),
+// so texel centres are returned exactly.  Across u the image wraps around when `wrap_u`
+// (equirectangular skies: u is longitude) and is clamped to the edge texels otherwise;
+// across v it is always clamped.  u and v must be finite.
+std::array<float, 3> sample_bilinear(const Image& image, double u, double v, bool wrap_u);
+
+}  // namespace arcus::image
