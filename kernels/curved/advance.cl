@@ -11,7 +11,9 @@
  *
  * Each accepted step passes through the per-step hook: with ARCUS_USE_BOX a step
  * that leaves the box is shortened to end where its path crosses the box (crossing.h);
- * the rendering engine tests steps against its geometry at the same place.
+ * with ARCUS_USE_GEOMETRY (render jobs, which always have a box) the step's chord is
+ * then tested against the scene, and a hit stops the ray on the hit surface
+ * (render/hits.h).
  *
  * Compiled with one ARCUS_METHOD_*, one ARCUS_FIELD_* (none for a constant field), and
  * optionally ARCUS_USE_{BOX,RECORD_PATH,FLOAT,DISPERSION} (the kernel-side
@@ -21,29 +23,41 @@
 
 #ifdef ARCUS_USE_RECORD_PATH
 /* Appends the current point of the lanes in `moved`; counts every point, so a count
- * above the capacity tells the host how much room the path needed. */
-ARCUS_INLINE void record_point(__global REAL* path, int capacity, size_t first_ray, ray6 y, MASKV moved, IDXV* count) {
-  REAL xs[ARCUS_LANES], ys[ARCUS_LANES], zs[ARCUS_LANES];
+ * above the capacity tells the host how much room the path needed.  A point is x y z,
+ * or with ARCUS_USE_RECORD_STATE the whole state x y z vx vy vz s (the renderer's path
+ * cache: enough to resume the integrator at any net point). */
+#ifdef ARCUS_USE_RECORD_STATE
+#define ARCUS_POINT_REALS 7
+#else
+#define ARCUS_POINT_REALS 3
+#endif
+ARCUS_INLINE void record_point(__global REAL* path, int capacity, size_t first_ray, ray6 y, REALV s, MASKV moved,
+                               IDXV* count) {
+  REAL c[ARCUS_POINT_REALS][ARCUS_LANES];
   IDX cs[ARCUS_LANES], ms[ARCUS_LANES];
-  VSTORE(y.x, 0, xs);
-  VSTORE(y.y, 0, ys);
-  VSTORE(y.z, 0, zs);
+  VSTORE(y.x, 0, c[0]);
+  VSTORE(y.y, 0, c[1]);
+  VSTORE(y.z, 0, c[2]);
+#ifdef ARCUS_USE_RECORD_STATE
+  VSTORE(y.vx, 0, c[3]);
+  VSTORE(y.vy, 0, c[4]);
+  VSTORE(y.vz, 0, c[5]);
+  VSTORE(s, 0, c[6]);
+#endif
   VSTORE_IDX(*count, 0, cs);
   VSTORE_IDX((IDXV)moved, 0, ms);
   for (int l = 0; l < ARCUS_LANES; ++l) {
     if (!ms[l]) continue;
     if (cs[l] < capacity) {
-      __global REAL* p = path + ((first_ray + l) * (size_t)capacity + (size_t)cs[l]) * 3;
-      p[0] = xs[l];
-      p[1] = ys[l];
-      p[2] = zs[l];
+      __global REAL* p = path + ((first_ray + l) * (size_t)capacity + (size_t)cs[l]) * ARCUS_POINT_REALS;
+      for (int k = 0; k < ARCUS_POINT_REALS; ++k) p[k] = c[k][l];
     }
     cs[l] += 1;
   }
   *count = VLOAD(0, cs);
 }
 #define RECORD(g, moved) \
-  record_point(path, job.path_capacity, (first_vector + (g)) * ARCUS_LANES, y[g], (moved), &points[g])
+  record_point(path, job.path_capacity, (first_vector + (g)) * ARCUS_LANES, y[g], s[g], (moved), &points[g])
 #else
 #define RECORD(g, moved)
 #endif
@@ -83,9 +97,21 @@ ARCUS_INLINE void ray_store(ray6 r, __global REAL* p, size_t v, size_t stride) {
   VSTORE(r.vz, v, p + 5 * stride);
 }
 
+#ifdef ARCUS_USE_GEOMETRY
+/* The scene (bvh/bvh_desc.h, render/render_desc.h), each ray's hit record, and the
+ * predicted hit steps of smart step selection (NULL: none). */
+#define GEOMETRY_PARAMS                                                                                         \
+  , __global const bvh_node *nodes, __global const REAL *tris, __global const shape *shapes,                  \
+      const geometry_desc geo, __global int *hit_ints, __global REAL *hit_reals, __global const int *predictions
+#define HIT_INT(c) (hit_ints + (c) * stride)
+#define HIT_REAL(c) (hit_reals + (c) * stride)
+#else
+#define GEOMETRY_PARAMS
+#endif
+
 __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* wavelengths, __global REAL* state,
                             __global int* istate, __global REAL* path, const field_desc field,
-                            __global const REAL* field_data, const advance_desc job) {
+                            __global const REAL* field_data, const advance_desc job GEOMETRY_PARAMS) {
   const size_t first_vector = get_global_id(0) * ARCUS_GROUPS;
   const size_t stride = (size_t)job.stride;
 #define REAL_STATE(c) (state + (c) * stride)
@@ -115,6 +141,9 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
   ray6 k1[ARCUS_GROUPS];
   REALV h[ARCUS_GROUPS];
   IDXV rejections[ARCUS_GROUPS];
+#endif
+#ifdef ARCUS_USE_GEOMETRY
+  hit_state hs[ARCUS_GROUPS];
 #endif
 
   if (job.first_slice) {
@@ -163,6 +192,16 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
 #ifdef ARCUS_METHOD_DP45
       rejections[g] = 0;
 #endif
+#ifdef ARCUS_USE_GEOMETRY
+      hs[g].kind = (IDXV)ARCUS_HIT_NONE;
+      hs[g].index = (IDXV)-1;
+      hs[g].tests = 0;
+      hs[g].step = (IDXV)-1;
+      hs[g].predict = predictions ? VLOAD_I(v, predictions) : (IDXV)-1;
+      hs[g].lo[0] = hs[g].hi[0] = x; /* the skipped chords' box starts at the origin */
+      hs[g].lo[1] = hs[g].hi[1] = yy;
+      hs[g].lo[2] = hs[g].hi[2] = z;
+#endif
     }
   } else {
     FOR_GROUPS(g) {
@@ -184,6 +223,17 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
 #ifdef ARCUS_METHOD_DP45
       rejections[g] = VLOAD_I(v, INT_STATE(ARCUS_STATE_REJECTIONS));
       h[g] = VLOAD(v, REAL_STATE(ARCUS_STATE_H));
+#endif
+#ifdef ARCUS_USE_GEOMETRY
+      hs[g].kind = VLOAD_I(v, HIT_INT(ARCUS_HIT_KIND));
+      hs[g].index = VLOAD_I(v, HIT_INT(ARCUS_HIT_INDEX));
+      hs[g].tests = VLOAD_I(v, HIT_INT(ARCUS_HIT_TESTS));
+      hs[g].predict = VLOAD_I(v, HIT_INT(ARCUS_HIT_PREDICT));
+      hs[g].step = VLOAD_I(v, HIT_INT(ARCUS_HIT_STEP));
+      for (int a = 0; a < 3; ++a) {
+        hs[g].lo[a] = VLOAD(v, HIT_REAL(ARCUS_HIT_SKIPPED_LO + a));
+        hs[g].hi[a] = VLOAD(v, HIT_REAL(ARCUS_HIT_SKIPPED_HI + a));
+      }
 #endif
     }
   }
@@ -219,6 +269,11 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
       MASKV left = accepted[g] & (box_distance(&job, y[g]) > RC(0));
       if (ANY(left)) cross_box(MED(g), &job, y_old[g], comp_old[g], s_old[g], h_taken[g], &y[g], &comp[g], &s[g], left);
       status[g] = SEL(status[g], (IDXV)ARCUS_STATUS_LEFT_BOX, left);
+#endif
+#ifdef ARCUS_USE_GEOMETRY
+      if (ANY(accepted[g]))
+        geometry_step(MED(g), &job, &geo, nodes, tris, shapes, y_old[g], comp_old[g], s_old[g], &y[g], &comp[g], &s[g],
+                      steps[g], accepted[g], accepted[g] & (status[g] != (IDXV)ARCUS_STATUS_ACTIVE), &hs[g], &status[g]);
 #endif
       RECORD(g, accepted[g]);
     }
@@ -256,11 +311,18 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
       MASKV left = active & (box_distance(&job, y_new[g]) > RC(0));
       if (ANY(left))
         cross_box(MED(g), &job, y[g], comp[g], s[g], (REALV)hk, &y_new[g], &comp_new[g], &s_new, left);
+      status[g] = SEL(status[g], (IDXV)ARCUS_STATUS_LEFT_BOX, left);
+#ifdef ARCUS_USE_GEOMETRY
+      const MASKV last_step = (IDXV)(k + 1 >= job.fixed_steps ? -1 : 0); /* the host marks these rays DONE */
+      if (ANY(active))
+        geometry_step(MED(g), &job, &geo, nodes, tris, shapes, y[g], comp[g], s[g], &y_new[g], &comp_new[g], &s_new,
+                      steps[g] + ONE_IF(active), active, active & ((status[g] != (IDXV)ARCUS_STATUS_ACTIVE) | last_step),
+                      &hs[g], &status[g]);
+#endif
       y[g] = ray_select(y[g], y_new[g], active);
       comp[g] = ray_select(comp[g], comp_new[g], active);
       s[g] = SEL(s[g], s_new, active);
       steps[g] += ONE_IF(active);
-      status[g] = SEL(status[g], (IDXV)ARCUS_STATUS_LEFT_BOX, left);
       RECORD(g, active);
 #else
       /* The least n of the step: a ray must not enter n <= 0 (checked after the loop). */
@@ -318,6 +380,17 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
 #ifdef ARCUS_METHOD_DP45
     VSTORE_I(rejections[g], v, INT_STATE(ARCUS_STATE_REJECTIONS));
     VSTORE(h[g], v, REAL_STATE(ARCUS_STATE_H));
+#endif
+#ifdef ARCUS_USE_GEOMETRY
+    VSTORE_I(hs[g].kind, v, HIT_INT(ARCUS_HIT_KIND));
+    VSTORE_I(hs[g].index, v, HIT_INT(ARCUS_HIT_INDEX));
+    VSTORE_I(hs[g].tests, v, HIT_INT(ARCUS_HIT_TESTS));
+    VSTORE_I(hs[g].predict, v, HIT_INT(ARCUS_HIT_PREDICT));
+    VSTORE_I(hs[g].step, v, HIT_INT(ARCUS_HIT_STEP));
+    for (int a = 0; a < 3; ++a) {
+      VSTORE(hs[g].lo[a], v, HIT_REAL(ARCUS_HIT_SKIPPED_LO + a));
+      VSTORE(hs[g].hi[a], v, HIT_REAL(ARCUS_HIT_SKIPPED_HI + a));
+    }
 #endif
   }
 }

@@ -1,12 +1,12 @@
 #ifdef ARCUS_USE_BOX
-/* Where a ray's integrated path crosses a surface (ARCUS_USE_BOX): the surface of
- * the job's box today, an intersected primitive in the rendering engine.  A step that
- * ends beyond the surface is shortened, with the method's own step from its start, until
- * its end lies within job->cross_tol of the surface: the end stays on the path the
- * integrator would have taken (a chord between the step's ends would miss it by
- * O(h²·curvature)).  Regula falsi with the Illinois modification on the signed
- * distance along the step: the bracket always holds the crossing, and the iteration
- * converges superlinearly even when the path is curved.                             */
+/* Where a ray's integrated path crosses a surface (ARCUS_USE_BOX): the surface of the
+ * job's box, or a primitive the rendering engine's per-step hook found the step's chord
+ * to hit (render/hits.h).  A step that ends beyond the surface is shortened, with the
+ * method's own step from its start, until its end lies within job->cross_tol of the
+ * surface: the end stays on the path the integrator would have taken (a chord between
+ * the step's ends would miss it by O(h²·curvature)).  Regula falsi with the Illinois
+ * modification on the signed distance along the step: the bracket always holds the
+ * crossing, and the iteration converges superlinearly even when the path is curved. */
 
 #define ARCUS_CROSSING_ITERATIONS 64
 
@@ -18,6 +18,22 @@ ARCUS_INLINE REALV box_distance(const advance_desc* job, ray6 y) {
   return fmax(d, fmax(job->box_min[2] - y.z, y.z - job->box_max[2]));
 }
 
+/* A surface other than the box, one per lane: the zero set of
+ *   a·|p − c|² + n·(p − c) − d,
+ * a plane (a = 0, n its unit normal, d = 0) or a sphere (a = 1/(2r), n = 0, d = r/2:
+ * the value is (|p − c|² − r²)/(2r), the signed distance to first order near it).
+ * Signs are chosen so that the step's start lies on the negative side.           */
+typedef struct quadric {
+  REALV a, cx, cy, cz, nx, ny, nz, d;
+} quadric;
+
+/* The box's distance (q null) or the quadric's value at y. */
+ARCUS_INLINE REALV surface_distance(const advance_desc* job, const quadric* q, ray6 y) {
+  if (!q) return box_distance(job, y);
+  REALV px = y.x - q->cx, py = y.y - q->cy, pz = y.z - q->cz;
+  return q->a * (px * px + py * py + pz * pz) + (q->nx * px + q->ny * py + q->nz * pz) - q->d;
+}
+
 /* Puts a coordinate within tol of a face onto it, so that the end of a ray that left
  * the box lies on the box exactly (it moves by at most the crossing tolerance). */
 ARCUS_INLINE REALV snap(REALV v, REAL lo, REAL hi, REAL tol, MASKV m) {
@@ -26,12 +42,12 @@ ARCUS_INLINE REALV snap(REALV v, REAL lo, REAL hi, REAL tol, MASKV m) {
 }
 
 /* Lanes in `crossed` took the step y0 → *y1 (length h, from arc s0) whose end lies
- * outside the box although y0 lies inside: moves *y1, *comp1 and *s1 to where the path
- * crosses the box. */
-ARCUS_INLINE void cross_box(const medium* m, const advance_desc* job, ray6 y0, ray6 comp0, REALV s0, REALV h,
-                            ray6* y1, ray6* comp1, REALV* s1, MASKV crossed) {
+ * beyond the surface (the box: q null; else the lanes' quadrics) although y0 lies on
+ * its negative side: moves *y1, *comp1 and *s1 to where the path crosses it. */
+ARCUS_INLINE void cross_surface(const medium* m, const advance_desc* job, const quadric* q, ray6 y0, ray6 comp0,
+                                REALV s0, REALV h, ray6* y1, ray6* comp1, REALV* s1, MASKV crossed) {
   REALV t_lo = RC(0), t_hi = RC(1);
-  REALV g_lo = box_distance(job, y0), g_hi = box_distance(job, *y1);
+  REALV g_lo = surface_distance(job, q, y0), g_hi = surface_distance(job, q, *y1);
   ray6 y_lo = y0, c_lo = comp0;
   IDXV side = 0; /* which end moved last: −1 the inner, +1 the outer (Illinois) */
   MASKV searching = crossed;
@@ -41,7 +57,7 @@ ARCUS_INLINE void cross_box(const medium* m, const advance_desc* job, ray6 y0, r
     ray6 c = comp0, yt;
     REALV n;
     method_steps(m, &y0, &yt, &c, t * h, &n, 1);
-    REALV g = box_distance(job, yt);
+    REALV g = surface_distance(job, q, yt);
     MASKV done = searching & (fabs(g) <= job->cross_tol);
     MASKV inner = searching & !(g > RC(0)); /* on or inside: the crossing lies beyond t */
     MASKV outer = searching & (g > RC(0)) & !done;
@@ -59,12 +75,18 @@ ARCUS_INLINE void cross_box(const medium* m, const advance_desc* job, ray6 y0, r
     side = SEL(side, (IDXV)1, outer);
     searching &= !done;
   }
-  /* Lanes that did not converge keep the last point inside the box. */
-  y_lo.x = snap(y_lo.x, job->box_min[0], job->box_max[0], job->cross_tol, crossed);
-  y_lo.y = snap(y_lo.y, job->box_min[1], job->box_max[1], job->cross_tol, crossed);
-  y_lo.z = snap(y_lo.z, job->box_min[2], job->box_max[2], job->cross_tol, crossed);
+  /* Lanes that did not converge keep the last point on the start's side. */
+  if (!q) {
+    y_lo.x = snap(y_lo.x, job->box_min[0], job->box_max[0], job->cross_tol, crossed);
+    y_lo.y = snap(y_lo.y, job->box_min[1], job->box_max[1], job->cross_tol, crossed);
+    y_lo.z = snap(y_lo.z, job->box_min[2], job->box_max[2], job->cross_tol, crossed);
+  }
   *y1 = ray_select(*y1, y_lo, crossed);
   *comp1 = ray_select(*comp1, c_lo, crossed);
   *s1 = SEL(*s1, s0 + t_lo * h, crossed);
+}
+ARCUS_INLINE void cross_box(const medium* m, const advance_desc* job, ray6 y0, ray6 comp0, REALV s0, REALV h,
+                            ray6* y1, ray6* comp1, REALV* s1, MASKV crossed) {
+  cross_surface(m, job, 0, y0, comp0, s0, h, y1, comp1, s1, crossed);
 }
 #endif /* ARCUS_USE_BOX */

@@ -28,6 +28,7 @@ const char* handle_type_name(HandleType type) {
     case HandleType::Field: return "field";
     case HandleType::Job: return "job";
     case HandleType::Scene: return "scene";
+    case HandleType::Renderer: return "renderer";
   }
   return "object";
 }

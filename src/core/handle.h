@@ -12,9 +12,9 @@
 
 namespace arcus {
 
-enum class HandleType : uint32_t { Context, Field, Job, Scene };
+enum class HandleType : uint32_t { Context, Field, Job, Scene, Renderer };
 
-// "context", "field", "job", "scene".
+// "context", "field", "job", "scene", "renderer".
 const char* handle_type_name(HandleType type);
 
 class Handle {

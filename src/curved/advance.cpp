@@ -203,9 +203,9 @@ AdvanceDesc make_advance_desc(const arcus_advance_params& p, const arcus_field_d
 // Points kept per ray's path: the caller's path_capacity, else exactly enough for a
 // fixed-step path (the origin and every step), else (DP45) up to 4096 as long as all
 // rays' paths fit in 1 GiB.  Overflow is reported after the run, never silent.
-uint32_t path_capacity(const arcus_advance_params& p, bool fixed, int32_t steps, size_t count, size_t real_bytes) {
+uint32_t path_capacity(const arcus_advance_params& p, bool fixed, int32_t steps, size_t count, double point_bytes) {
   if (!p.record_path) return 0;
-  const double rays = static_cast<double>(std::max<size_t>(count, 1)), point_bytes = 3.0 * real_bytes;
+  const double rays = static_cast<double>(std::max<size_t>(count, 1));
   double points = p.path_capacity;
   if (!points && fixed) points = steps + 1.0;
   if (!points) points = std::max(16.0, std::min<double>(kDefaultDpPathCapacity, kMaxDefaultPathBytes / (point_bytes * rays)));
@@ -237,19 +237,20 @@ struct DeviceRays {
 template <class Real, class FieldDesc, class AdvanceDesc>
 bool run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params& p, const Plan& plan,
          cl_program program, size_t count, const double* origins, const double* directions, const double* wavelengths,
-         AdvanceJob* job) {
+         const AdvanceExtension* ext, AdvanceJob* job) {
+  const uint32_t point_reals = ext ? ext->record_components : 3;
   const bool single = sizeof(Real) == sizeof(float);
   const size_t per_item = plan.layout.per_item();
   const size_t items = std::max<size_t>(1, (count + per_item - 1) / per_item);
   const size_t stride = items * per_item;
   AdvanceDesc desc = make_advance_desc<AdvanceDesc, Real>(p, field->desc, plan, stride);
-  const uint32_t capacity = path_capacity(p, !plan.dp45, desc.fixed_steps, count, sizeof(Real));
+  const uint32_t capacity = path_capacity(p, !plan.dp45, desc.fixed_steps, count, point_reals * double(sizeof(Real)));
   desc.path_capacity = static_cast<int32_t>(capacity);
   job->path_capacity = capacity;
 
   // Every size checked before anything is allocated.
   const size_t state_reals = single ? ARCUS_STATE_REALS_FLOAT : ARCUS_STATE_REALS_DOUBLE;
-  const double path_bytes = static_cast<double>(count) * capacity * 3.0 * sizeof(Real);
+  const double path_bytes = static_cast<double>(count) * capacity * point_reals * sizeof(Real);
   const double ray_bytes = static_cast<double>(stride) *
                            ((ARCUS_IN_COMPONENTS + state_reals + (plan.dispersion ? 1 : 0)) * sizeof(Real) +
                             ARCUS_STATE_INTS * sizeof(int32_t));
@@ -301,6 +302,7 @@ bool run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
   kernel.set(4, dev.path.get());
   kernel.set_value(5, field_desc_as<FieldDesc>(field->desc));
   kernel.set(6, data.get());
+  if (ext && ext->set_args) ext->set_args(kernel, 8, stride, single);
 
   // Slices: up to `units` steps of every ray (fixed) or attempts (DP45) per launch.
   std::vector<int32_t> status(stride);
@@ -337,6 +339,7 @@ bool run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
   slices.progress_user = p.progress_user;
   const bool cancelled = run_in_slices(slices, &job->stats);
 
+  if (ext && ext->finished) ext->finished(stride, single);
   // The results are the state.
   std::vector<Real> st(state_reals * stride);
   std::vector<int32_t> ist(ARCUS_STATE_INTS * stride);
@@ -369,7 +372,11 @@ bool run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
     unit_direction(v, &job->directions[3 * i]);
   }
 
-  if (p.record_path) {
+  if (p.record_path && ext && ext->take_paths) {
+    for (size_t i = 0; i < count; ++i)
+      job->path_needed.push_back(static_cast<uint64_t>(static_cast<uint32_t>(ist[ARCUS_STATE_POINTS * stride + i])));
+    ext->take_paths(std::move(dev.path), capacity);
+  } else if (p.record_path) {
     std::vector<Real> points(count * capacity * 3);
     dev.path->read(ctx, 0, points.size() * sizeof(Real), points.data());
     job->path_offsets.assign(count + 1, 0);
@@ -451,13 +458,15 @@ Plan plan_advance(const arcus_advance_params& p, const arcus_field_desc_d& field
 
 arcus_status advance(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params& p, size_t count,
                      const double* origins, const double* directions, const double* wavelengths, arcus_job_t** job_out,
-                     std::string* message) {
+                     std::string* message, const AdvanceExtension* ext) {
   const auto start = std::chrono::steady_clock::now();
   require(count == 0 || origins, "origins is NULL");
   require(count == 0 || directions, "directions is NULL");
   require(count <= (size_t(1) << 30), "count: more than 2^30 rays in one call");
-  const Plan plan = plan_advance(p, field->desc, field->data, ctx->info, ctx->runtime->entry(), wavelengths != nullptr);
-  const BuiltProgram program = ctx->runtime->program(advance_source(), plan.features, plan.layout);
+  Plan plan = plan_advance(p, field->desc, field->data, ctx->info, ctx->runtime->entry(), wavelengths != nullptr);
+  if (ext) plan.features |= ext->features;
+  const BuiltProgram program =
+      ctx->runtime->program(ext && ext->source ? *ext->source : advance_source(), plan.features, plan.layout);
 
   auto job = std::make_unique<AdvanceJob>(ctx);
   job->count = count;
@@ -471,10 +480,10 @@ arcus_status advance(arcus_context_t* ctx, arcus_field_t* field, const arcus_adv
   if (count > 0) {
     if (plan.single)
       cancelled = run<float, arcus_field_desc_f, arcus_advance_desc_f>(ctx, field, p, plan, program.program, count,
-                                                                      origins, directions, ray_wavelengths, job.get());
+                                                                      origins, directions, ray_wavelengths, ext, job.get());
     else
       cancelled = run<double, arcus_field_desc_d, arcus_advance_desc_d>(ctx, field, p, plan, program.program, count,
-                                                                       origins, directions, ray_wavelengths, job.get());
+                                                                       origins, directions, ray_wavelengths, ext, job.get());
   } else if (p.record_path) {
     job->path_offsets.assign(1, 0);
   }

@@ -2,6 +2,7 @@
 // planning (features, layout, step counts) and its run in slices on the device.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -58,11 +59,26 @@ struct Plan {
 Plan plan_advance(const arcus_advance_params& params, const arcus_field_desc_d& field, const std::vector<double>& data,
                   const arcus_device_info& device, const DeviceEntry& entry, bool with_wavelengths);
 
+// What another engine adds to an advance (the renderer's per-step hook against its
+// geometry, render/hits.h): features and the kernel source that compiles them, kernel
+// arguments after the advance kernel's own, and a look at its buffers after the run.
+// `stride` is the entries per component of the ray buffers.
+struct AdvanceExtension {
+  arcus_features features = 0;
+  const KernelSource* source = nullptr;  // includes curved/advance.cl after the hook
+  uint32_t record_components = 3;        // reals per recorded path point (x y z)
+  std::function<void(KernelCall& kernel, unsigned first_arg, size_t stride, bool single)> set_args;
+  std::function<void(size_t stride, bool single)> finished;  // after the last slice
+  // The recorded paths (record_path), as the kernel wrote them: count × capacity ×
+  // record_components reals.  If set, the path buffer is handed over instead of read.
+  std::function<void(std::unique_ptr<DeviceBuffer> paths, uint32_t capacity)> take_paths;
+};
+
 // The body of arcus_advance: plans, builds (or reuses) the kernel, runs it in slices
 // and fills a new job.  Returns SUCCESS or a partial status (INVALID_RAYS,
 // PATH_OVERFLOW, CANCELLED) with *message set; throws on other errors.
 arcus_status advance(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params& params, size_t count,
                      const double* origins, const double* directions, const double* wavelengths, arcus_job_t** job,
-                     std::string* message);
+                     std::string* message, const AdvanceExtension* extension = nullptr);
 
 }  // namespace arcus::curved

@@ -53,4 +53,8 @@ std::vector<double> read_grid_file(const char* path, int32_t type, size_t count)
 // Whether n depends on the wavelength (per-ray wavelengths apply).
 bool dispersive(const arcus_field_desc_d& desc);
 
+// The field a scene file's medium describes (scene_desc.h); reads a grid's file.
+struct MediumDesc;
+FieldBuild build_field(const MediumDesc& medium);
+
 }  // namespace arcus::curved

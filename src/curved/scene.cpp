@@ -29,32 +29,6 @@ struct CurvedScene : arcus_scene_s {
   arcus_field_s* field = nullptr;  // the scene's reference
 };
 
-FieldBuild build_field(const MediumDesc& m) {
-  switch (m.kind) {
-    case ARCUS_FIELD_CONSTANT: return constant(m.n);
-    case ARCUS_FIELD_LINEAR: return linear(m.n0, m.gradient.data());
-    case ARCUS_FIELD_LINEAR_N2: return linear_n2(m.a, m.k.data());
-    case ARCUS_FIELD_LUNEBURG: return luneburg(m.center.data(), m.radius);
-    case ARCUS_FIELD_FISHEYE: return fisheye(m.center.data(), m.radius, m.n0);
-    case ARCUS_FIELD_ATMOSPHERE: {
-      arcus_atmosphere_desc a;
-      a.spherical = m.atmosphere.spherical ? 1 : 0;
-      a.wavelength = m.atmosphere.wavelength;
-      a.sea_level_temperature = m.atmosphere.sea_level_temperature;
-      a.sea_level_pressure = m.atmosphere.sea_level_pressure;
-      a.inversion_count = static_cast<uint32_t>(m.atmosphere.inversions.size());
-      a.inversions = m.atmosphere.inversions.data();
-      return atmosphere(a);
-    }
-    case ARCUS_FIELD_GRID: {
-      const GridDesc& g = m.grid;
-      const size_t count = grid_value_count(g.dims.data(), g.origin.data(), g.spacing.data());
-      return grid(read_grid_file(g.file.c_str(), g.dtype, count), g.dims.data(), g.origin.data(), g.spacing.data());
-    }
-  }
-  fail(ARCUS_ERROR_INVALID_ARGUMENT, "medium: unknown kind");
-}
-
 // Everything is read and built before the context's lock is taken; only the library
 // objects are created under it.  A bad medium is reported with the scene file's name.
 arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::Locked& locked) {

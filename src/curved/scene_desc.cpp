@@ -140,6 +140,8 @@ const MediumType kMedia[] = {
     {"fisheye", ARCUS_FIELD_FISHEYE, parse_fisheye},          {"atmosphere", ARCUS_FIELD_ATMOSPHERE, parse_atmosphere},
     {"grid", ARCUS_FIELD_GRID, parse_grid}};
 
+}  // namespace
+
 void parse_medium(const Node& m, const std::string& base_dir, MediumDesc* d) {
   std::vector<std::pair<const char*, const MediumType*>> options;
   for (const MediumType& t : kMedia) options.emplace_back(t.name, &t);
@@ -147,6 +149,8 @@ void parse_medium(const Node& m, const std::string& base_dir, MediumDesc* d) {
   d->kind = type->kind;
   type->parse(m, base_dir, d);
 }
+
+namespace {
 
 // ---- rays -------------------------------------------------------------------------------
 
@@ -253,6 +257,8 @@ void parse_rays(const Node& rays, const SceneLimits& limits, SceneDesc* s) {
 
 // ---- integrator, box, name --------------------------------------------------------------
 
+}  // namespace
+
 void parse_integrator(const Node& in, arcus_advance_params* p) {
   in.expect_object(
       {"method", "step", "rtol", "atol", "min_step", "max_step", "max_rejections", "length", "max_steps", "precision"});
@@ -292,6 +298,8 @@ std::string parse_name(const Node& node) {
   if (!plain) node.fail("use letters, digits, '_', '-' and '.' only (it names the output directory)");
   return name;
 }
+
+namespace {
 
 SceneDesc parse_document(const Document& doc, const std::string& base_dir, const SceneLimits& limits) {
   SceneDesc s;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "arcus/arcus.h"
+#include "scene/json_reader.h"
 
 namespace arcus::curved {
 
@@ -62,6 +63,13 @@ struct SceneDesc {
 struct SceneLimits {
   size_t max_rays = size_t(1) << 26;
 };
+
+// The parts of a scene file other engines' scenes share (a render scene has a medium
+// and an integrator too): each reads one node, failing with its file and key path.
+void parse_medium(const json::Node& node, const std::string& base_dir, MediumDesc* out);
+void parse_integrator(const json::Node& node, arcus_advance_params* params);
+void parse_box(const json::Node& node, arcus_advance_params* params);
+std::string parse_name(const json::Node& node);  // names an output directory: plain
 
 // "constant", "linear", ... as in the file.
 const char* medium_type_name(arcus_field_kind kind);

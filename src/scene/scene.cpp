@@ -6,6 +6,7 @@
 
 #include "core/call.h"
 #include "core/error.h"
+#include "scene/json_reader.h"
 
 using arcus::HandleType;
 using arcus::require_pointer;
@@ -14,20 +15,35 @@ using namespace arcus::api;
 namespace arcus::scene {
 namespace {
 
-std::vector<std::pair<const char*, Loader>>& loaders() {
-  static std::vector<std::pair<const char*, Loader>> all;
+struct Registered {
+  const char* engine;
+  const char* marker;  // the top-level key that marks the engine's scenes; null: the default
+  Loader loader;
+};
+
+std::vector<Registered>& loaders() {
+  static std::vector<Registered> all;
   return all;
 }
 
 }  // namespace
 
-void register_loader(const char* engine, Loader loader) { loaders().emplace_back(engine, std::move(loader)); }
+void register_loader(const char* engine, Loader loader, const char* marker) {
+  loaders().push_back({engine, marker, std::move(loader)});
+}
 
 const Loader& loader_for(const std::string& path) {
-  // One engine reads scene files so far; the next one to do so decides by the
-  // document's keys here.
-  if (loaders().empty()) fail(ARCUS_ERROR_UNSUPPORTED, path + ": no engine reads scene files");
-  return loaders().front().second;
+  // The document's top-level keys say whose scene it is (a render scene has a
+  // "camera"); a document that is not an object falls to the default, which reports it.
+  const json::Document doc = json::Document::from_file(path);
+  const json::Node root = doc.root();
+  const Registered* fallback = nullptr;
+  for (const Registered& r : loaders()) {
+    if (!r.marker) fallback = &r;
+    else if (root.is_object() && root.find(r.marker)) return r.loader;
+  }
+  if (!fallback) fail(ARCUS_ERROR_UNSUPPORTED, path + ": no engine reads scene files");
+  return fallback->loader;
 }
 
 }  // namespace arcus::scene

@@ -23,12 +23,17 @@ namespace arcus::scene {
 using Locked = std::function<void(const std::function<void()>&)>;
 using Loader = std::function<arcus_scene_s*(arcus_context_t* ctx, const std::string& path, const Locked& locked)>;
 
-void register_loader(const char* engine, Loader loader);
+// `marker`: the top-level key of the engine's scene files ("camera"), or null for the
+// engine that reads every other scene (the curved one).
+void register_loader(const char* engine, Loader loader, const char* marker);
 struct LoaderEntry {
-  LoaderEntry(const char* engine, Loader loader) { register_loader(engine, std::move(loader)); }
+  LoaderEntry(const char* engine, Loader loader, const char* marker = nullptr) {
+    register_loader(engine, std::move(loader), marker);
+  }
 };
 
-// The loader of the scene at `path` (today every scene is a curved one).
+// The loader of the scene at `path`, by its document's top-level keys; reads the file
+// (ARCUS_ERROR_IO / INVALID_ARGUMENT for one that is unreadable or not JSON).
 const Loader& loader_for(const std::string& path);
 
 }  // namespace arcus::scene
