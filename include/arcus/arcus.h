@@ -12,5 +12,6 @@
 #include "arcus_core.h"
 #include "arcus_scene.h"
 #include "arcus_curved.h"
+#include "arcus_render.h"
 
 #endif /* ARCUS_ARCUS_H */

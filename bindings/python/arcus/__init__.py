@@ -44,7 +44,7 @@ from ._lib import FEATURES, feature_names
 from ._lib import check as _check
 from ._lib import lib as _libarcus
 from ._lib import library_path  # the path (or soname) libarcus was loaded from
-from .context import AdvanceResult, Context, DeviceInfo, Scene, SceneField, devices
+from .context import AdvanceResult, Context, DeviceInfo, RenderResult, Scene, SceneField, devices
 
 
 def _version():
@@ -81,10 +81,19 @@ __all__ = [
     "RAY_LEFT_BOX",
     "RAY_STATUS_NAMES",
     "RAY_STEP_LIMIT",
+    "RenderResult",
     "Scene",
     "SceneField",
     "devices",
     "feature_names",
     "library_path",
     "media",
+    "render",
 ]
+
+
+def render(scene, techniques=None, frames=1, exr=None, png=None, device=DEVICE_DEFAULT):
+    """Renders the render scene file ``scene`` on a new context of ``device``: see
+    :meth:`Context.render`.  Returns a :class:`RenderResult` (image as numpy)."""
+    with Context(device) as ctx:
+        return ctx.render(scene, techniques=techniques, frames=frames, exr=exr, png=png)

@@ -99,6 +99,25 @@ class JobStatsStruct(ctypes.Structure):
 
 
 #: void (*arcus_error_callback)(void* user, arcus_status status, const char* message)
+class CameraStruct(ctypes.Structure):
+    _fields_ = [
+        ("position", c_double * 3),
+        ("look_at", c_double * 3),
+        ("up", c_double * 3),
+        ("vfov_deg", c_double),
+        ("width", c_uint32),
+        ("height", c_uint32),
+    ]
+
+
+class RenderStatsStruct(ctypes.Structure):
+    _fields_ = [(name, c_double) for name in
+                ("trace_seconds", "walk_seconds", "photon_seconds", "shade_seconds", "total_seconds")] + [
+        (name, c_uint64) for name in
+        ("pixels", "rays_traced", "rays_mirrored", "rays_interpolated", "rays_cached", "rays_retried", "steps",
+         "tests", "shadow_rays", "photons", "cache_bytes")] + [("techniques", c_uint32)]
+
+
 ERROR_CALLBACK = ctypes.CFUNCTYPE(None, c_void_p, c_int, c_char_p)
 
 # ---- prototypes -----------------------------------------------------------------------
@@ -165,6 +184,24 @@ _PROTOTYPES = {
     "arcus_scene_get_ray_count": (_status, [_handle, POINTER(c_size_t)]),
     "arcus_scene_get_rays": (_status, [_handle, _dvec, _dvec, _dvec, POINTER(c_int32)]),
     "arcus_scene_advance": (_status, [_handle, PROGRESS_CALLBACK, c_void_p, _out_handle]),
+    "arcus_renderer_create": (_status, [_handle, _out_handle]),
+    "arcus_renderer_retain": (_status, [_handle]),
+    "arcus_renderer_release": (_status, [_handle]),
+    "arcus_renderer_set_techniques": (_status, [_handle, c_uint32]),
+    "arcus_renderer_get_techniques": (_status, [_handle, POINTER(c_uint32)]),
+    "arcus_renderer_set_camera": (_status, [_handle, POINTER(CameraStruct)]),
+    "arcus_renderer_get_camera": (_status, [_handle, POINTER(CameraStruct)]),
+    "arcus_renderer_set_integrator": (_status, [_handle, POINTER(AdvanceParamsStruct)]),
+    "arcus_renderer_get_integrator": (_status, [_handle, POINTER(AdvanceParamsStruct)]),
+    "arcus_render_frame": (_status, [_handle, PROGRESS_CALLBACK, c_void_p, _out_handle]),
+    "arcus_job_get_render_stats": (_status, [_handle, POINTER(RenderStatsStruct)]),
+    "arcus_job_get_image_size": (_status, [_handle, POINTER(c_uint32), POINTER(c_uint32)]),
+    "arcus_job_get_image": (_status, [_handle, POINTER(ctypes.c_float)]),
+    "arcus_job_get_hits": (
+        _status,
+        [_handle, _dvec, POINTER(c_int32), POINTER(c_int32), _dvec, POINTER(c_uint32), POINTER(c_uint32)],
+    ),
+    "arcus_job_write_image": (_status, [_handle, c_char_p, c_char_p]),
 }
 
 # ---- finding the library --------------------------------------------------------------

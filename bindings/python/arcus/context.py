@@ -1,6 +1,7 @@
 """Devices, contexts, advancing rays and loading scenes."""
 
 import collections
+import ctypes
 import numbers
 import threading
 import weakref
@@ -622,6 +623,53 @@ class Context:
         self._check(lib.arcus_scene_load(ctx, encoded, byref(out)))
         return Scene(self, _Handle(out, lib.arcus_scene_release))
 
+    def render(self, path, techniques=None, frames=1, exr=None, png=None):
+        """Renders the render scene at ``path`` (a scene file with a "camera").
+
+        ``techniques``: None (the scene's own), or names among "smart_step", "symmetry",
+        "undersample", "path_cache"; ``frames``: frames rendered with the camera at rest
+        (the result is the last one's).  ``exr``/``png``: optional files to write.
+        Returns a :class:`RenderResult`.  Raises arcus.Error with the library's message
+        (a scene error names the file and the key).
+        """
+        frames = to_int(frames, "frames", 1, 100000)
+        encoded = to_path(path, "path")
+        bits = None
+        if techniques is not None:
+            names = dict(smart_step=1, symmetry=2, undersample=4, path_cache=8)
+            if isinstance(techniques, str):
+                techniques = [techniques]
+            bits = 0
+            for t in techniques:
+                if t not in names:
+                    raise ArgumentError("techniques: unknown technique %r (expected one of %s)"
+                                        % (t, ", ".join(sorted(names))))
+                bits |= names[t]
+        scene = c_void_p()
+        self._check(lib.arcus_scene_load(self._handle, encoded, byref(scene)))
+        scene_ref = _Handle(scene, lib.arcus_scene_release)
+        renderer = c_void_p()
+        try:
+            self._check(lib.arcus_renderer_create(scene, byref(renderer)))
+            renderer_ref = _Handle(renderer, lib.arcus_renderer_release)
+            if bits is not None:
+                self._check(lib.arcus_renderer_set_techniques(renderer, bits))
+            job = None
+            for _ in range(frames):
+                out = c_void_p()
+                self._check(lib.arcus_render_frame(renderer, _lib.PROGRESS_CALLBACK(), None, byref(out)))
+                if job is not None:
+                    lib.arcus_job_release(job)
+                job = out
+            try:
+                return _render_result(self, job, exr, png)
+            finally:
+                lib.arcus_job_release(job)
+        finally:
+            if renderer:
+                renderer_ref.release()
+            scene_ref.release()
+
     def _own(self, handle):
         """Releases ``handle`` (a _Handle) with this context at the latest."""
         self._state.objects.add(handle)
@@ -629,6 +677,47 @@ class Context:
 
 
 # ---- scenes -----------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class RenderResult:
+    """A rendered frame: ``image`` (H, W, 3) linear RGB float32; per pixel ``objects``
+    (index in the scene's "objects", -1 none), ``primitives``, ``points`` (H, W, 3; NaN
+    for none), ``distances`` (arc length), ``steps`` and ``tests``; ``stats`` a dict of
+    the frame's figures (seconds per stage, rays, steps, tests, ...)."""
+
+    image: np.ndarray
+    objects: np.ndarray
+    primitives: np.ndarray
+    points: np.ndarray
+    distances: np.ndarray
+    steps: np.ndarray
+    tests: np.ndarray
+    stats: dict
+
+
+def _render_result(context, job, exr, png):
+    w, h = c_uint32(), c_uint32()
+    context._check(lib.arcus_job_get_image_size(job, byref(w), byref(h)))
+    shape = (h.value, w.value)
+    image = np.empty(shape + (3,), dtype=np.float32)
+    context._check(lib.arcus_job_get_image(job, _lib.ptr(image, ctypes.c_float)))
+    points = np.empty(shape + (3,))
+    objects = np.empty(shape, dtype=np.int32)
+    primitives = np.empty(shape, dtype=np.int32)
+    distances = np.empty(shape)
+    steps = np.empty(shape, dtype=np.uint32)
+    tests = np.empty(shape, dtype=np.uint32)
+    context._check(lib.arcus_job_get_hits(job, _lib.ptr(points), _lib.ptr(objects, c_int32),
+                                          _lib.ptr(primitives, c_int32), _lib.ptr(distances),
+                                          _lib.ptr(steps, c_uint32), _lib.ptr(tests, c_uint32)))
+    st = _lib.RenderStatsStruct()
+    context._check(lib.arcus_job_get_render_stats(job, byref(st)))
+    stats = {name: getattr(st, name) for name, _ in st._fields_}
+    if exr is not None or png is not None:
+        context._check(lib.arcus_job_write_image(job, None if exr is None else to_path(exr, "exr"),
+                                                 None if png is None else to_path(png, "png")))
+    return RenderResult(image, objects, primitives, points, distances, steps, tests, stats)
 
 
 class SceneField(Field):

@@ -1,0 +1,65 @@
+/* What the rendering engine's per-step hook (render/hits.h) and the host share: the
+ * analytic shapes, the geometry description passed by value, and the per-ray hit
+ * record kept on the device between slices (see field.h for why structs are macros). */
+#ifndef ARCUS_RENDER_DESC_H
+#define ARCUS_RENDER_DESC_H
+
+#ifndef __OPENCL_C_VERSION__
+#include "common/real.h" /* the device source has it prepended */
+#endif
+
+/* Internal ray status codes beyond advance_desc.h's (render jobs only). */
+#define ARCUS_STATUS_HIT 7   /* stopped on a primitive: the end state is the hit        */
+#define ARCUS_STATUS_RETRY 8 /* smart step selection could not prove the skipped steps
+                              * empty: the host traces the ray again without prediction */
+
+/* Kinds of hit. */
+#define ARCUS_HIT_NONE 0
+#define ARCUS_HIT_TRIANGLE 1 /* index: the triangle's slot in the BVH's leaf order     */
+#define ARCUS_HIT_SHAPE 2    /* index: the shape's position in the shape array         */
+
+/* Analytic shapes: spheres (the Earth, a sun 1.5e11 m away) and discs (ground). */
+#define ARCUS_SHAPE_SPHERE 0
+#define ARCUS_SHAPE_DISC 1
+#define ARCUS_MAX_SHAPES 64
+
+#define ARCUS_DECLARE_SHAPE(NAME, R, I)                                             \
+  typedef struct NAME {                                                             \
+    R center[3];                                                                    \
+    R normal[3]; /* disc: unit normal                                           */ \
+    R radius;                                                                       \
+    I kind;      /* ARCUS_SHAPE_*                                               */  \
+    I pad;                                                                          \
+  } NAME
+
+#define ARCUS_DECLARE_GEOMETRY_DESC(NAME, R, I)                                     \
+  typedef struct NAME {                                                             \
+    I shape_count;                                                                  \
+    I triangle_count; /* 0: no BVH to traverse                                   */ \
+    I max_tests;      /* bound on the tests counter (saturates)                  */ \
+    I pad;                                                                          \
+  } NAME
+
+/* The hit record, integers (stride entries per component, like the ray state): */
+#define ARCUS_HIT_KIND 0    /* ARCUS_HIT_*                                           */
+#define ARCUS_HIT_INDEX 1   /* triangle slot or shape index                          */
+#define ARCUS_HIT_TESTS 2   /* intersection tests (segments and proofs) this ray made */
+#define ARCUS_HIT_PREDICT 3 /* smart step selection: the predicted hit step, -1: none;
+                             * set to -1 once the skipped steps are proved empty      */
+#define ARCUS_HIT_STEP 4    /* the step (segment index) that hit                      */
+#define ARCUS_HIT_INTS 5
+/* ... and reals: the box of the steps skipped so far (smart step selection). */
+#define ARCUS_HIT_SKIPPED_LO 0
+#define ARCUS_HIT_SKIPPED_HI 3
+#define ARCUS_HIT_REALS 6
+
+#ifdef __OPENCL_C_VERSION__
+ARCUS_DECLARE_SHAPE(shape, REAL, int);
+ARCUS_DECLARE_GEOMETRY_DESC(geometry_desc, REAL, int);
+#else
+ARCUS_DECLARE_SHAPE(arcus_shape_d, double, int32_t);
+ARCUS_DECLARE_SHAPE(arcus_shape_f, float, int32_t);
+ARCUS_DECLARE_GEOMETRY_DESC(arcus_geometry_desc, double, int32_t);
+#endif
+
+#endif /* ARCUS_RENDER_DESC_H */

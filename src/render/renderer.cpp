@@ -1,0 +1,400 @@
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "core/error.h"
+#include "render/trace.h"
+
+arcus_renderer_s::arcus_renderer_s(arcus_context_t* ctx, arcus::render::RenderScene* s)
+    : Handle(arcus::HandleType::Renderer, ctx), scene(s), camera(s->desc.camera), techniques(s->desc.techniques),
+      params(s->desc.params) {
+  scene->retain();
+}
+
+arcus_renderer_s::~arcus_renderer_s() {
+  // Deleted under the context's lock (release_object): the scene goes the same way.
+  if (scene->drop()) {
+    delete scene;
+    arcus::release_context(owner());
+  }
+}
+
+namespace arcus::render {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+struct V3 {
+  double x, y, z;
+};
+V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+V3 operator*(double s, V3 a) { return {s * a.x, s * a.y, s * a.z}; }
+double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+V3 normalized(V3 a) { return (1.0 / std::sqrt(dot(a, a))) * a; }
+V3 v3(const double* p) { return {p[0], p[1], p[2]}; }
+V3 v3(const Vec3& p) { return {p[0], p[1], p[2]}; }
+
+// The camera's frame: forward, right and true up.
+struct Frame {
+  V3 origin, forward, right, up;
+  double tan_half, aspect;
+};
+
+Frame camera_frame(const CameraDesc& c) {
+  Frame f;
+  f.origin = v3(c.position);
+  f.forward = normalized(v3(c.look_at) - f.origin);
+  f.right = normalized(cross(f.forward, v3(c.up)));
+  f.up = cross(f.right, f.forward);
+  f.tan_half = std::tan(0.5 * c.vfov_deg * M_PI / 180.0);
+  f.aspect = static_cast<double>(c.width) / c.height;
+  return f;
+}
+
+// Pixel (i, j)'s direction: through its centre, rows top to bottom.
+V3 pixel_direction(const Frame& f, const CameraDesc& c, uint32_t i, uint32_t j) {
+  const double px = (2.0 * (i + 0.5) / c.width - 1.0) * f.tan_half * f.aspect;
+  const double py = (1.0 - 2.0 * (j + 0.5) / c.height) * f.tan_half;
+  return f.forward + px * f.right + py * f.up;
+}
+
+// A batch of rays to trace and where their results go.
+struct Batch {
+  std::vector<double> origins, directions;
+  std::vector<int32_t> predictions;
+  std::vector<size_t> pixels;
+  void add(V3 o, V3 d, size_t pixel, int32_t prediction) {
+    origins.insert(origins.end(), {o.x, o.y, o.z});
+    directions.insert(directions.end(), {d.x, d.y, d.z});
+    predictions.push_back(prediction);
+    pixels.push_back(pixel);
+  }
+  size_t size() const { return pixels.size(); }
+};
+
+// Every pixel's primary result.
+struct Primary {
+  std::vector<int32_t> status, object, primitive, kind, index, hit_step, tests;
+  std::vector<int32_t> end_step;  // the step that ended the ray (hit or left the scene), -1: failed
+  std::vector<double> position, direction, length;
+  std::vector<uint64_t> steps;
+  explicit Primary(size_t n)
+      : status(n, ARCUS_STATUS_FAILED), object(n, -1), primitive(n, -1), kind(n, 0), index(n, -1), hit_step(n, -1),
+        tests(n, 0), end_step(n, -1), position(3 * n, NAN), direction(3 * n, 0), length(n, 0), steps(n, 0) {}
+};
+
+// Traces a batch; stores results per pixel (tests and steps add up over retries).
+// Returns the indices (into the batch) of rays that must be traced again.
+std::vector<size_t> trace_batch(arcus_context_t* ctx, arcus_renderer_s* r, const Batch& b, bool predict,
+                                Primary* out, arcus_render_stats* st) {
+  TraceInput in;
+  in.count = b.size();
+  in.origins = b.origins.data();
+  in.directions = b.directions.data();
+  in.predictions = predict ? b.predictions.data() : nullptr;
+  const TraceOutput t = trace(ctx, r->scene, r->params, in);
+  st->trace_seconds += t.stats.total_seconds;
+  st->rays_traced += b.size();
+  std::vector<size_t> retry;
+  for (size_t k = 0; k < b.size(); ++k) {
+    const size_t p = b.pixels[k];
+    out->tests[p] += t.tests[k];
+    out->steps[p] += t.steps[k];
+    if (t.status[k] == ARCUS_STATUS_RETRY) {
+      retry.push_back(k);
+      continue;
+    }
+    out->status[p] = t.status[k];
+    out->object[p] = t.object[k];
+    out->primitive[p] = t.primitive[k];
+    out->kind[p] = t.hit_kind[k];
+    out->index[p] = t.hit_index[k];
+    out->hit_step[p] = t.hit_step[k];
+    const bool left = t.status[k] == ARCUS_STATUS_LEFT_BOX || t.status[k] == ARCUS_STATUS_DONE;
+    out->end_step[p] = t.status[k] == ARCUS_STATUS_HIT ? t.hit_step[k] : left ? static_cast<int32_t>(t.steps[k]) : -1;
+    out->length[p] = t.lengths[k];
+    for (int a = 0; a < 3; ++a) {
+      out->position[3 * p + a] = t.positions[3 * k + a];
+      out->direction[3 * p + a] = t.directions[3 * k + a];
+    }
+  }
+  return retry;
+}
+
+// Smart step selection's spatial prediction (thesis §4.3.3): a coarse grid of pixels
+// (every 4th in each direction) is traced first; every other pixel predicts the least
+// end step of the coarse pixels around it: the step that hit, or for a ray that left
+// the scene its last step (the thesis' scenes end every ray on geometry; here leaving
+// the bounds is the end a prediction can skip to, and the proof covers the skipped
+// steps either way).
+constexpr uint32_t kCoarse = 4;
+
+int32_t spatial_prediction(const Primary& coarse, const CameraDesc& c, uint32_t i, uint32_t j) {
+  const uint32_t i0 = i / kCoarse * kCoarse, j0 = j / kCoarse * kCoarse;
+  const uint32_t i1 = std::min(i0 + kCoarse, (c.width - 1) / kCoarse * kCoarse);
+  const uint32_t j1 = std::min(j0 + kCoarse, (c.height - 1) / kCoarse * kCoarse);
+  int32_t least = std::numeric_limits<int32_t>::max();
+  for (uint32_t jj : {j0, j1})
+    for (uint32_t ii : {i0, i1}) {
+      const size_t p = static_cast<size_t>(jj) * c.width + ii;
+      if (coarse.end_step[p] < 0) return -1;
+      least = std::min(least, coarse.end_step[p]);
+    }
+  return least;
+}
+
+// ---- shading --------------------------------------------------------------------------
+
+V3 sky_radiance(const RenderScene& s, V3 d) {
+  const SkyDesc& sky = s.desc.sky;
+  switch (sky.kind) {
+    case SkyKind::Constant: return v3(sky.color);
+    case SkyKind::Gradient: {
+      const double t = std::clamp(d.y, 0.0, 1.0);
+      return (1 - t) * v3(sky.horizon) + t * v3(sky.zenith);
+    }
+    case SkyKind::Image: {
+      const double u = 0.5 + std::atan2(d.x, -d.z) / (2 * M_PI), v = std::acos(std::clamp(d.y, -1.0, 1.0)) / M_PI;
+      const auto c = image::sample_bilinear(s.sky_image, u, v, true);
+      return sky.intensity * V3{c[0], c[1], c[2]};
+    }
+  }
+  return {0, 0, 0};
+}
+
+// The surface at a hit: its normal (facing the arriving ray) and texture coordinates.
+struct Surface {
+  V3 normal;
+  double u = 0, v = 0;
+  bool has_uv = false;
+};
+
+Surface surface_at(const RenderScene& s, int32_t kind, int32_t index, V3 p, V3 arriving) {
+  Surface out;
+  if (kind == ARCUS_HIT_TRIANGLE) {
+    const double* t = &s.triangles.triangles[9 * static_cast<size_t>(s.slot_of[static_cast<size_t>(index)])];
+    const V3 a = v3(t), e1 = v3(t + 3) - a, e2 = v3(t + 6) - a;
+    out.normal = normalized(cross(e1, e2));
+    const uint32_t mesh = s.triangles.geometry[static_cast<size_t>(index)];
+    const auto& uvs = s.mesh_uvs[mesh];
+    if (!uvs.empty()) {
+      // Barycentric weights of p (projected onto the triangle's plane).
+      const V3 w = p - a;
+      const double d00 = dot(e1, e1), d01 = dot(e1, e2), d11 = dot(e2, e2), d20 = dot(w, e1), d21 = dot(w, e2);
+      const double den = d00 * d11 - d01 * d01;
+      const double b1 = (d11 * d20 - d01 * d21) / den, b2 = (d00 * d21 - d01 * d20) / den, b0 = 1 - b1 - b2;
+      const size_t local = static_cast<size_t>(index) - s.triangles.mesh_first[mesh];
+      const double* c = &uvs[6 * local];
+      out.u = b0 * c[0] + b1 * c[2] + b2 * c[4];
+      out.v = b0 * c[1] + b1 * c[3] + b2 * c[5];
+      out.has_uv = true;
+    }
+  } else {
+    const arcus_shape_d& sh = s.shapes[static_cast<size_t>(index)];
+    const V3 c = v3(sh.center);
+    if (sh.kind == ARCUS_SHAPE_SPHERE) {
+      out.normal = normalized(p - c);
+      out.u = 0.5 + std::atan2(out.normal.x, -out.normal.z) / (2 * M_PI);
+      out.v = std::acos(std::clamp(out.normal.y, -1.0, 1.0)) / M_PI;
+    } else {
+      out.normal = v3(sh.normal);
+      // Planar coordinates in metres along two axes of the disc's plane.
+      const V3 n = out.normal;
+      const V3 t = normalized(std::fabs(n.y) < 0.9 ? cross(n, V3{0, 1, 0}) : cross(n, V3{1, 0, 0}));
+      const V3 b = cross(n, t);
+      out.u = dot(p - c, t);
+      out.v = dot(p - c, b);
+    }
+    out.has_uv = true;
+  }
+  if (dot(out.normal, arriving) > 0) out.normal = -1.0 * out.normal;
+  return out;
+}
+
+V3 albedo(const RenderScene& s, const MaterialDesc& m, size_t material, const Surface& surf) {
+  V3 a = v3(m.diffuse);
+  const image::Image& tex = s.textures[material];
+  if (tex.width > 0 && surf.has_uv) {
+    const double u = surf.u * m.uv_scale[0], v = surf.v * m.uv_scale[1];
+    const auto c = image::sample_bilinear(tex, u - std::floor(u), v - std::floor(v), true);
+    a = {a.x * c[0], a.y * c[1], a.z * c[2]};
+  }
+  return a;
+}
+
+// Direct light at every hit pixel: a curved shadow ray from the hit toward each light
+// (starting along the straight direction to it), traced through the medium; the
+// light counts where the ray reaches it unblocked.
+void shade(arcus_context_t* ctx, arcus_renderer_s* r, const Primary& prim, RenderJob* job) {
+  const RenderScene& s = *r->scene;
+  const size_t n = prim.status.size();
+  job->rgb.assign(3 * n, 0.f);
+  std::vector<V3> radiance(n, V3{0, 0, 0}), base(n, V3{0, 0, 0});
+  std::vector<Surface> surfaces(n);
+  const double scale = std::max({s.hi[0] - s.lo[0], s.hi[1] - s.lo[1], s.hi[2] - s.lo[2]});
+  for (size_t p = 0; p < n; ++p) {
+    const V3 d = v3(&prim.direction[3 * p]);
+    if (prim.status[p] == ARCUS_STATUS_HIT) {
+      const ObjectDesc& o = s.desc.objects[static_cast<size_t>(prim.object[p])];
+      const MaterialDesc& m = s.desc.materials[static_cast<size_t>(o.material)];
+      surfaces[p] = surface_at(s, prim.kind[p], prim.index[p], v3(&prim.position[3 * p]), d);
+      base[p] = albedo(s, m, static_cast<size_t>(o.material), surfaces[p]);
+      radiance[p] = v3(m.emission);
+    } else if (prim.status[p] == ARCUS_STATUS_LEFT_BOX || prim.status[p] == ARCUS_STATUS_DONE ||
+               prim.status[p] == ARCUS_STATUS_STEP_LIMIT) {
+      radiance[p] = sky_radiance(s, d);
+    }
+  }
+  for (const LightDesc& light : s.desc.lights) {
+    Batch b;
+    std::vector<double> cosine, falloff;
+    for (size_t p = 0; p < n; ++p) {
+      if (prim.status[p] != ARCUS_STATUS_HIT) continue;
+      const V3 hit = v3(&prim.position[3 * p]), nrm = surfaces[p].normal;
+      V3 to = light.kind == LightKind::Sun ? v3(light.direction) : v3(light.position) - hit;
+      const double dist2 = dot(to, to);
+      to = normalized(to);
+      const double c = dot(nrm, to);
+      if (!(c > 0)) continue;
+      // Off the surface by a little more than the crossing tolerance, so the shadow ray
+      // does not find its own surface again.
+      const double offset = 1e-6 * scale + 1e-4;
+      b.add(hit + offset * nrm, to, p, -1);
+      cosine.push_back(c);
+      falloff.push_back(light.kind == LightKind::Sun ? 1.0 : 1.0 / dist2);
+    }
+    if (b.size() == 0) continue;
+    TraceInput in;
+    in.count = b.size();
+    in.origins = b.origins.data();
+    in.directions = b.directions.data();
+    arcus_advance_params p = r->params;
+    if (light.kind == LightKind::Point) p.length = 0;  // set per ray below: one job per light
+    std::vector<double> reach(b.size(), p.length);
+    if (light.kind == LightKind::Point) {
+      // Every shadow ray of a point light stops at the light's distance: the longest one
+      // sets the job's length, and a hit beyond a ray's own distance does not block it.
+      for (size_t k = 0; k < b.size(); ++k) {
+        const V3 o = v3(&b.origins[3 * k]);
+        reach[k] = std::sqrt(dot(v3(light.position) - o, v3(light.position) - o));
+        p.length = std::max(p.length, reach[k]);
+      }
+    }
+    const TraceOutput t = trace(ctx, r->scene, p, in);
+    job->render_stats.shadow_rays += b.size();
+    job->render_stats.trace_seconds += 0;  // shadow time is the shading stage's
+    for (size_t k = 0; k < b.size(); ++k) {
+      const bool blocked = t.status[k] == ARCUS_STATUS_HIT && t.lengths[k] < reach[k];
+      const bool failed = t.status[k] == ARCUS_STATUS_FAILED || t.status[k] == ARCUS_STATUS_INVALID_INPUT;
+      if (blocked || failed) continue;
+      const size_t px = b.pixels[k];
+      const double w = cosine[k] * falloff[k] / M_PI;
+      radiance[px] = radiance[px] + V3{w * base[px].x * light.power[0], w * base[px].y * light.power[1],
+                                       w * base[px].z * light.power[2]};
+    }
+  }
+  for (size_t p = 0; p < n; ++p) {
+    job->rgb[3 * p] = static_cast<float>(radiance[p].x);
+    job->rgb[3 * p + 1] = static_cast<float>(radiance[p].y);
+    job->rgb[3 * p + 2] = static_cast<float>(radiance[p].z);
+  }
+}
+
+}  // namespace
+
+std::string technique_problem(const arcus_renderer_s& r, uint32_t techniques) {
+  if (techniques & ~static_cast<uint32_t>(ARCUS_TECHNIQUE_ALL))
+    return "techniques: unknown bits " + std::to_string(techniques & ~static_cast<uint32_t>(ARCUS_TECHNIQUE_ALL));
+  const uint32_t path_based = ARCUS_TECHNIQUE_SYMMETRY | ARCUS_TECHNIQUE_UNDERSAMPLE | ARCUS_TECHNIQUE_PATH_CACHE;
+  if (techniques & path_based)
+    return "techniques: symmetry, undersampling and path caching are not implemented yet in this version";
+  (void)r;
+  return "";
+}
+
+std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_callback progress, void* user) {
+  const auto start = Clock::now();
+  arcus_context_t* ctx = r->owner();
+  const CameraDesc& c = r->camera;
+  const std::string problem = technique_problem(*r, r->techniques);
+  if (!problem.empty()) fail(ARCUS_ERROR_UNSUPPORTED, problem);
+  const size_t n = static_cast<size_t>(c.width) * c.height;
+  auto job = std::make_unique<RenderJob>(ctx);
+  arcus_render_stats& st = job->render_stats;
+  st.techniques = r->techniques;
+  st.pixels = n;
+  const Frame f = camera_frame(c);
+  Primary prim(n);
+  auto report = [&](double fraction) {
+    if (progress && progress(user, fraction) != 0) fail(ARCUS_ERROR_CANCELLED, "the progress callback cancelled the frame");
+  };
+
+  const bool smart = r->techniques & ARCUS_TECHNIQUE_SMART_STEP;
+  const bool temporal = smart && r->previous_hit_step.size() == n;
+  Batch first, rest;
+  for (uint32_t j = 0; j < c.height; ++j)
+    for (uint32_t i = 0; i < c.width; ++i) {
+      const size_t p = static_cast<size_t>(j) * c.width + i;
+      const V3 d = pixel_direction(f, c, i, j);
+      if (!smart || temporal)
+        first.add(f.origin, d, p, temporal ? r->previous_hit_step[p] : -1);
+      else if (i % kCoarse == 0 && j % kCoarse == 0)
+        first.add(f.origin, d, p, -1);
+      else
+        rest.add(f.origin, d, p, -1);
+    }
+  report(0.0);
+  std::vector<size_t> retry = trace_batch(ctx, r, first, temporal, &prim, &st);
+  Batch again;
+  for (size_t k : retry) again.add(f.origin, v3(&first.directions[3 * k]), first.pixels[k], -1);
+  report(0.5);
+  if (rest.size()) {
+    for (size_t k = 0; k < rest.size(); ++k) {
+      const size_t p = rest.pixels[k];
+      rest.predictions[k] = spatial_prediction(prim, c, static_cast<uint32_t>(p % c.width),
+                                               static_cast<uint32_t>(p / c.width));
+    }
+    for (size_t k : trace_batch(ctx, r, rest, true, &prim, &st))
+      again.add(f.origin, v3(&rest.directions[3 * k]), rest.pixels[k], -1);
+  }
+  if (again.size()) {
+    st.rays_retried = again.size();
+    trace_batch(ctx, r, again, false, &prim, &st);
+  }
+  report(0.8);
+
+  const auto shade_start = Clock::now();
+  shade(ctx, r, prim, job.get());
+  st.shade_seconds = since(shade_start);
+
+  job->width = c.width;
+  job->height = c.height;
+  job->exposure = r->scene->desc.exposure;
+  job->count = n;
+  job->points = prim.position;
+  job->objects = prim.object;
+  job->primitives = prim.primitive;
+  job->distances = prim.length;
+  job->steps.resize(n);
+  job->tests.resize(n);
+  for (size_t p = 0; p < n; ++p) {
+    job->steps[p] = static_cast<uint32_t>(prim.steps[p]);
+    job->tests[p] = static_cast<uint32_t>(prim.tests[p]);
+    st.steps += prim.steps[p];
+    st.tests += static_cast<uint64_t>(prim.tests[p]);
+  }
+  r->previous_hit_step = prim.end_step;
+  job->features = ARCUS_FEATURE_GEOMETRY;
+  st.total_seconds = since(start);
+  job->stats.total_seconds = st.total_seconds;
+  report(1.0);
+  return job;
+}
+
+}  // namespace arcus::render

@@ -1,0 +1,46 @@
+// Renderers and render jobs: a frame of a render scene through its medium (thesis
+// §4.1.6), with the optimizations of §4.3 a caller switches on.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "arcus/arcus_render.h"
+#include "core/job.h"
+#include "render/scene.h"
+
+struct arcus_renderer_s : arcus::Handle {
+  arcus_renderer_s(arcus_context_t* ctx, arcus::render::RenderScene* scene);
+  ~arcus_renderer_s() override;
+
+  arcus::render::RenderScene* scene;  // a reference
+  arcus::render::CameraDesc camera;
+  uint32_t techniques = 0;
+  arcus_advance_params params{};
+  // What the last frame leaves to the next while the camera rests: each pixel's hit
+  // step (smart step selection's temporal prediction).
+  std::vector<int32_t> previous_hit_step;
+
+  void reset_frames() { previous_hit_step.clear(); }
+};
+
+namespace arcus::render {
+
+struct RenderJob : arcus_job_s {
+  explicit RenderJob(arcus_context_t* ctx) : arcus_job_s(ctx, "render") {}
+  uint32_t width = 0, height = 0;
+  double exposure = 1;
+  std::vector<float> rgb;  // width × height × 3
+  std::vector<double> points, distances;
+  std::vector<int32_t> objects, primitives;
+  std::vector<uint32_t> steps, tests;
+  arcus_render_stats render_stats{};
+};
+
+// Why `techniques` cannot be used for this renderer's scene and camera ("" if they can).
+std::string technique_problem(const arcus_renderer_s& r, uint32_t techniques);
+
+// Renders one frame (throws on errors, ARCUS_ERROR_CANCELLED when cancelled).
+std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_callback progress, void* user);
+
+}  // namespace arcus::render

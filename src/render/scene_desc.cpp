@@ -1,0 +1,303 @@
+#include "render/scene_desc.h"
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "core/format.h"
+#include "curved/params.h"
+
+namespace arcus::render {
+namespace {
+
+namespace fs = std::filesystem;
+using json::Document;
+using json::Node;
+
+constexpr uint32_t kMaxSide = 16384;
+
+std::string resolved(const Node& node, const std::string& base_dir) {
+  const fs::path p(node.string());
+  if (p.empty()) node.fail("expected a file name");
+  return (p.is_absolute() || base_dir.empty() ? p : fs::path(base_dir) / p).lexically_normal().string();
+}
+
+Vec3 colour(const Node& node) {
+  const Vec3 c = node.vec3();
+  for (double v : c)
+    if (v < 0) node.fail("expected non-negative values");
+  return c;
+}
+
+Vec3 unit(const Node& node) {
+  const Vec3 v = node.vec3();
+  const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  if (!(len > 0) || !std::isfinite(len)) node.fail("expected a non-zero direction");
+  return {v[0] / len, v[1] / len, v[2] / len};
+}
+
+double positive(const Node& node) {
+  const double v = node.number();
+  if (!(v > 0)) node.fail("expected a positive number");
+  return v;
+}
+
+CameraDesc parse_camera(const Node& c) {
+  c.expect_object({"position", "look_at", "up", "vfov_deg", "width", "height"});
+  CameraDesc d;
+  d.position = c.member("position").vec3();
+  d.look_at = c.member("look_at").vec3();
+  if (auto v = c.find("up")) d.up = v->vec3();
+  d.vfov_deg = c.member("vfov_deg").number();
+  d.width = static_cast<uint32_t>(c.member("width").integer(kMaxSide));
+  d.height = static_cast<uint32_t>(c.member("height").integer(kMaxSide));
+  try {
+    check_camera(d, "camera");
+  } catch (const Error& e) {
+    c.fail(e.what());
+  }
+  return d;
+}
+
+MaterialDesc parse_material(const Node& m, const std::string& name, const std::string& base_dir) {
+  m.expect_object({"diffuse", "texture", "uv_scale", "emission"});
+  MaterialDesc d;
+  d.name = name;
+  if (auto v = m.find("diffuse")) d.diffuse = colour(*v);
+  if (auto v = m.find("texture")) d.texture = resolved(*v, base_dir);
+  if (auto v = m.find("uv_scale")) {
+    if (v->array_size() != 2) v->fail("expected [su, sv]");
+    const auto e = v->elements();
+    d.uv_scale = {e[0].number(), e[1].number()};
+  }
+  if (auto v = m.find("emission")) d.emission = colour(*v);
+  return d;
+}
+
+ObjectDesc parse_object(const Node& o, const std::map<std::string, int>& materials, const std::string& base_dir) {
+  ObjectDesc d;
+  d.kind = o.member("type").choice<ObjectKind>(
+      {{"mesh", ObjectKind::Mesh}, {"sphere", ObjectKind::Sphere}, {"disc", ObjectKind::Disc}});
+  switch (d.kind) {
+    case ObjectKind::Mesh:
+      o.expect_object({"type", "file", "material", "translate", "scale", "rotate_deg"});
+      d.file = resolved(o.member("file"), base_dir);
+      if (auto v = o.find("translate")) d.translate = v->vec3();
+      if (auto v = o.find("scale")) {
+        if (v->is_number()) {
+          const double s = positive(*v);
+          d.scale = {s, s, s};
+        } else {
+          d.scale = v->vec3();
+          for (double s : d.scale)
+            if (!(s > 0)) v->fail("expected positive scale factors");
+        }
+      }
+      if (auto v = o.find("rotate_deg")) d.rotate_deg = v->vec3();
+      break;
+    case ObjectKind::Sphere:
+      o.expect_object({"type", "center", "radius", "material"});
+      d.center = o.member("center").vec3();
+      d.radius = positive(o.member("radius"));
+      break;
+    case ObjectKind::Disc:
+      o.expect_object({"type", "center", "normal", "radius", "material"});
+      d.center = o.member("center").vec3();
+      d.normal = unit(o.member("normal"));
+      d.radius = positive(o.member("radius"));
+      break;
+  }
+  const Node m = o.member("material");
+  const auto it = materials.find(m.string());
+  if (it == materials.end()) m.fail("no material named " + json::quoted(m.string()) + " in $.materials");
+  d.material = it->second;
+  return d;
+}
+
+LightDesc parse_light(const Node& l) {
+  LightDesc d;
+  d.kind = l.member("type").choice<LightKind>({{"sun", LightKind::Sun}, {"point", LightKind::Point}});
+  if (d.kind == LightKind::Sun) {
+    l.expect_object({"type", "direction", "irradiance"});
+    d.direction = unit(l.member("direction"));
+    d.power = colour(l.member("irradiance"));
+  } else {
+    l.expect_object({"type", "position", "intensity"});
+    d.position = l.member("position").vec3();
+    d.power = colour(l.member("intensity"));
+  }
+  return d;
+}
+
+SkyDesc parse_sky(const Node& s, const std::string& base_dir) {
+  SkyDesc d;
+  d.kind = s.member("type").choice<SkyKind>(
+      {{"constant", SkyKind::Constant}, {"gradient", SkyKind::Gradient}, {"image", SkyKind::Image}});
+  switch (d.kind) {
+    case SkyKind::Constant:
+      s.expect_object({"type", "color"});
+      d.color = colour(s.member("color"));
+      break;
+    case SkyKind::Gradient:
+      s.expect_object({"type", "horizon", "zenith"});
+      d.horizon = colour(s.member("horizon"));
+      d.zenith = colour(s.member("zenith"));
+      break;
+    case SkyKind::Image:
+      s.expect_object({"type", "file", "intensity"});
+      d.file = resolved(s.member("file"), base_dir);
+      if (auto v = s.find("intensity")) d.intensity = positive(*v);
+      break;
+  }
+  return d;
+}
+
+std::vector<double> parse_spectral(const Node& s) {
+  s.expect_object({"wavelengths", "count", "min", "max"});
+  std::vector<double> w;
+  auto check = [](const Node& n, double v) {
+    if (!(v >= ARCUS_MIN_WAVELENGTH && v <= ARCUS_MAX_WAVELENGTH))
+      n.fail("expected a wavelength in nm within 300..1690, got " + number(v));
+  };
+  if (auto list = s.find("wavelengths")) {
+    for (const Node& e : list->elements()) {
+      w.push_back(e.number());
+      check(e, w.back());
+    }
+    if (w.size() < 2) list->fail("expected at least 2 wavelengths");
+    return w;
+  }
+  const uint64_t count = s.member("count").integer(1024);
+  const double lo = s.member("min").number(), hi = s.member("max").number();
+  check(s.member("min"), lo);
+  check(s.member("max"), hi);
+  if (count < 2) s.member("count").fail("expected at least 2 wavelengths");
+  if (!(lo < hi)) s.member("max").fail("must exceed min");
+  // Band centres: each sample stands for an equal band of [min, max].
+  for (uint64_t i = 0; i < count; ++i) w.push_back(lo + (hi - lo) * (i + 0.5) / count);
+  return w;
+}
+
+PhotonDesc parse_photons(const Node& p) {
+  p.expect_object({"count", "estimate", "max_radius"});
+  PhotonDesc d;
+  d.count = p.member("count").integer(uint64_t(1) << 26);
+  if (auto v = p.find("estimate")) d.estimate = static_cast<uint32_t>(v->integer(512));
+  if (d.estimate < 1) p.member("estimate").fail("expected at least 1 photon");
+  if (auto v = p.find("max_radius")) d.max_radius = positive(*v);
+  return d;
+}
+
+RenderDesc parse_document(const Document& doc, const std::string& base_dir) {
+  RenderDesc s;
+  s.file = doc.file_name();
+  const Node root = doc.root();
+  root.expect_object({"name", "description", "medium", "integrator", "bounds", "camera", "materials", "objects",
+                      "lights", "sky", "spectral", "photons", "techniques", "exposure"});
+  s.name = curved::parse_name(root.member("name"));
+  if (auto v = root.find("description")) s.description = v->string();
+  curved::parse_medium(root.member("medium"), base_dir, &s.medium);
+  curved::default_advance_params(&s.params);
+  curved::parse_integrator(root.member("integrator"), &s.params);
+  if (auto v = root.find("bounds")) {
+    curved::parse_box(*v, &s.params);
+    s.has_bounds = true;
+  }
+  s.camera = parse_camera(root.member("camera"));
+  std::map<std::string, int> names;
+  if (auto v = root.find("materials")) {
+    if (!v->is_object()) v->fail("expected an object of named materials");
+    for (auto it = v->value().begin(); it != v->value().end(); ++it) {
+      names[it.key()] = static_cast<int>(s.materials.size());
+      s.materials.push_back(
+          parse_material(Node(it.value(), json::child_path(v->path(), it.key()), s.file), it.key(), base_dir));
+    }
+  }
+  if (auto v = root.find("objects"))
+    for (const Node& o : v->elements()) s.objects.push_back(parse_object(o, names, base_dir));
+  if (auto v = root.find("lights"))
+    for (const Node& l : v->elements()) s.lights.push_back(parse_light(l));
+  if (auto v = root.find("sky")) s.sky = parse_sky(*v, base_dir);
+  if (auto v = root.find("spectral")) s.wavelengths = parse_spectral(*v);
+  if (auto v = root.find("photons")) s.photons = parse_photons(*v);
+  if (auto v = root.find("techniques")) {
+    std::string list;
+    for (const Node& t : v->elements()) list += (list.empty() ? "" : ",") + t.string();
+    try {
+      s.techniques = parse_techniques(list);
+    } catch (const Error& e) {
+      v->fail(e.what());
+    }
+  }
+  if (auto v = root.find("exposure")) s.exposure = positive(*v);
+  s.document = doc.dump();
+  return s;
+}
+
+double norm(const Vec3& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+}  // namespace
+
+void check_camera(const CameraDesc& c, const std::string& what) {
+  for (int a = 0; a < 3; ++a)
+    require(std::isfinite(c.position[a]) && std::isfinite(c.look_at[a]) && std::isfinite(c.up[a]),
+            what + ": position, look_at and up must be finite");
+  const Vec3 f{c.look_at[0] - c.position[0], c.look_at[1] - c.position[1], c.look_at[2] - c.position[2]};
+  require(norm(f) > 0, what + ": look_at must differ from position");
+  const Vec3 x{f[1] * c.up[2] - f[2] * c.up[1], f[2] * c.up[0] - f[0] * c.up[2], f[0] * c.up[1] - f[1] * c.up[0]};
+  require(norm(x) > 1e-9 * norm(f) * norm(c.up), what + ": up must not be zero or along the view direction");
+  require(std::isfinite(c.vfov_deg) && c.vfov_deg > 0 && c.vfov_deg < 180,
+          what + ": vfov_deg = " + number(c.vfov_deg) + " must lie strictly between 0 and 180");
+  require(c.width >= 1 && c.height >= 1 && c.width <= kMaxSide && c.height <= kMaxSide,
+          what + ": width and height must be 1.." + std::to_string(kMaxSide) + " pixels");
+}
+
+uint32_t parse_techniques(const std::string& list) {
+  static const std::pair<const char*, uint32_t> kNames[] = {{"smart_step", ARCUS_TECHNIQUE_SMART_STEP},
+                                                            {"symmetry", ARCUS_TECHNIQUE_SYMMETRY},
+                                                            {"undersample", ARCUS_TECHNIQUE_UNDERSAMPLE},
+                                                            {"path_cache", ARCUS_TECHNIQUE_PATH_CACHE},
+                                                            {"all", ARCUS_TECHNIQUE_ALL},
+                                                            {"none", 0}};
+  uint32_t bits = 0;
+  std::stringstream in(list);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (item.empty()) continue;
+    bool known = false;
+    for (const auto& n : kNames)
+      if (item == n.first) {
+        bits |= n.second;
+        known = true;
+      }
+    require(known, "unknown technique " + json::quoted(item) +
+                       " (expected smart_step, symmetry, undersample, path_cache, all or none)");
+  }
+  return bits;
+}
+
+std::string technique_names(uint32_t t) {
+  std::string s;
+  if (t & ARCUS_TECHNIQUE_SMART_STEP) s += "smart_step,";
+  if (t & ARCUS_TECHNIQUE_SYMMETRY) s += "symmetry,";
+  if (t & ARCUS_TECHNIQUE_UNDERSAMPLE) s += "undersample,";
+  if (t & ARCUS_TECHNIQUE_PATH_CACHE) s += "path_cache,";
+  if (s.empty()) return "none";
+  s.pop_back();
+  return s;
+}
+
+RenderDesc parse_render_text(const std::string& text, const std::string& file_name, const std::string& base_dir) {
+  return parse_document(Document::from_text(text, file_name), base_dir);
+}
+
+RenderDesc parse_render_file(const std::string& path) {
+  const Document doc = Document::from_file(path);
+  return parse_document(doc, fs::path(path).parent_path().string());
+}
+
+}  // namespace arcus::render

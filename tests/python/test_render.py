@@ -1,0 +1,50 @@
+"""Rendering from Python: arcus.render returns the image and figures as numpy."""
+import pathlib
+
+import numpy as np
+import pytest
+
+import arcus
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+
+
+def small_scene(tmp_path, medium='{"type": "constant", "n": 1.0}'):
+    text = """{"name": "py", "medium": %s,
+      "integrator": {"method": "dp45", "rtol": 1e-12, "atol": 1e-6, "length": 100},
+      "camera": {"position": [0, 0, 0], "look_at": [0, 0, -1], "vfov_deg": 40, "width": 32, "height": 24},
+      "materials": {"m": {"diffuse": [0.5, 0.5, 0.5], "emission": [0.1, 0.2, 0.3]}},
+      "objects": [{"type": "sphere", "center": [0, 0, -5], "radius": 1, "material": "m"}],
+      "sky": {"type": "constant", "color": [0, 0, 1]}}""" % medium
+    path = tmp_path / "py.json"
+    path.write_text(text)
+    return path
+
+
+def test_render_returns_the_image_and_the_hits(tmp_path):
+    result = arcus.render(small_scene(tmp_path), techniques=["smart_step"])
+    assert result.image.shape == (24, 32, 3) and result.image.dtype == np.float32
+    centre = result.objects[12, 16]
+    assert centre == 0 and result.objects[0, 0] == -1
+    # A straight ray down the axis meets the unit sphere 4 units away (closed form).
+    assert abs(result.distances[12, 16] - 4.0) < 0.01
+    assert np.allclose(result.image[0, 0], [0, 0, 1])
+    assert result.stats["pixels"] == 32 * 24 and result.stats["techniques"] == 1
+
+
+def test_a_bad_scene_raises_with_the_file_and_key(tmp_path):
+    path = tmp_path / "bad.json"
+    path.write_text('{"name": "b", "medium": {"type": "constant", "n": 1}, "integrator": {"length": 1},'
+                    ' "camera": {"position": [0, 0, 0], "look_at": [1, 0, 0], "vfov_deg": 400,'
+                    ' "width": 4, "height": 4}}')
+    with pytest.raises(arcus.Error) as e:
+        arcus.render(path)
+    assert "$.camera" in str(e.value) and "bad.json" in str(e.value)
+
+
+def test_unknown_and_unimplemented_techniques_are_refused(tmp_path):
+    with pytest.raises(arcus.ArgumentError):
+        arcus.render(small_scene(tmp_path), techniques=["warp"])
+    with pytest.raises(arcus.Error) as e:
+        arcus.render(small_scene(tmp_path), techniques=["symmetry"])
+    assert "not implemented" in str(e.value)

@@ -1,0 +1,361 @@
+// Rendering through curved light (arcus_render.h): straight optics as the limit of
+// curved optics, smart step selection's exactness, the hard cases, and bad input.
+#include <unistd.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "test_util.h"
+
+using namespace arcus_test;
+
+namespace {
+
+struct Rendered {
+  uint32_t width = 0, height = 0;
+  std::vector<float> rgb;
+  std::vector<double> points, distances;
+  std::vector<int32_t> objects, primitives;
+  std::vector<uint32_t> steps, tests;
+  arcus_render_stats stats{};
+};
+
+class Render : public ArcusTest {
+ protected:
+  static std::string temp_file(const std::string& tag, const std::string& ext, const std::string& text) {
+    const std::string path =
+        ::testing::TempDir() + "arcus_render_" + tag + "_" + std::to_string(getpid()) + ext;
+    std::ofstream(path) << text;
+    return path;
+  }
+  static std::string mesh(const char* name) { return std::string(ARCUS_SOURCE_DIR) + "/data/meshes/" + name; }
+
+  // A scene: the medium, camera and objects given as JSON fragments.
+  static std::string scene_text(const std::string& medium, const std::string& camera, const std::string& objects,
+                                const std::string& extra = "") {
+    return R"({"name": "t", "medium": )" + medium +
+           R"(, "integrator": {"method": "dp45", "rtol": 1e-12, "atol": 1e-6, "length": 1000},
+              "camera": )" + camera +
+           R"(, "materials": {"m": {"diffuse": [0.5, 0.5, 0.5]}}, "objects": )" + objects +
+           R"(, "sky": {"type": "constant", "color": [0.2, 0.3, 0.4]})" + extra + "}";
+  }
+
+  arcus_scene_t* load(const std::string& text, const char* tag) {
+    arcus_scene_t* s = nullptr;
+    const arcus_status st = arcus_scene_load(ctx(), temp_file(tag, ".json", text).c_str(), &s);
+    EXPECT_EQ(st, ARCUS_SUCCESS) << last_error();
+    return s;
+  }
+
+  Rendered render(arcus_scene_t* scene, uint32_t techniques, int frames = 1) {
+    Rendered out;
+    arcus_renderer_t* r = nullptr;
+    EXPECT_EQ(arcus_renderer_create(scene, &r), ARCUS_SUCCESS) << last_error();
+    if (!r) return out;
+    EXPECT_EQ(arcus_renderer_set_techniques(r, techniques), ARCUS_SUCCESS) << last_error();
+    arcus_job_t* job = nullptr;
+    for (int f = 0; f < frames; ++f) {
+      if (job) arcus_job_release(job);
+      job = nullptr;
+      EXPECT_EQ(arcus_render_frame(r, nullptr, nullptr, &job), ARCUS_SUCCESS) << last_error();
+      if (!job) break;
+    }
+    if (job) {
+      arcus_job_get_image_size(job, &out.width, &out.height);
+      const size_t n = size_t(out.width) * out.height;
+      out.rgb.resize(3 * n);
+      out.points.resize(3 * n);
+      out.distances.resize(n);
+      out.objects.resize(n);
+      out.primitives.resize(n);
+      out.steps.resize(n);
+      out.tests.resize(n);
+      EXPECT_EQ(arcus_job_get_image(job, out.rgb.data()), ARCUS_SUCCESS);
+      EXPECT_EQ(arcus_job_get_hits(job, out.points.data(), out.objects.data(), out.primitives.data(),
+                                   out.distances.data(), out.steps.data(), out.tests.data()),
+                ARCUS_SUCCESS);
+      EXPECT_EQ(arcus_job_get_render_stats(job, &out.stats), ARCUS_SUCCESS);
+      arcus_job_release(job);
+    }
+    arcus_renderer_release(r);
+    return out;
+  }
+
+  std::pair<arcus_status, std::string> load_error(const std::string& path) {
+    arcus_scene_t* s = nullptr;
+    const arcus_status st = arcus_scene_load(ctx(), path.c_str(), &s);
+    if (s) arcus_scene_release(s);
+    return {st, last_error()};
+  }
+};
+
+// Möller–Trumbore on the host: the independent straight-ray reference.
+bool ray_triangle(const double* o, const double* d, const double* a, const double* b, const double* c, double* t) {
+  const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double p[3] = {d[1] * e2[2] - d[2] * e2[1], d[2] * e2[0] - d[0] * e2[2], d[0] * e2[1] - d[1] * e2[0]};
+  const double det = e1[0] * p[0] + e1[1] * p[1] + e1[2] * p[2];
+  if (std::fabs(det) < 1e-300) return false;
+  const double s[3] = {o[0] - a[0], o[1] - a[1], o[2] - a[2]};
+  const double u = (s[0] * p[0] + s[1] * p[1] + s[2] * p[2]) / det;
+  if (u < 0 || u > 1) return false;
+  const double q[3] = {s[1] * e1[2] - s[2] * e1[1], s[2] * e1[0] - s[0] * e1[2], s[0] * e1[1] - s[1] * e1[0]};
+  const double v = (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]) / det;
+  if (v < 0 || u + v > 1) return false;
+  *t = (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) / det;
+  return *t > 0;
+}
+
+// The icosphere's triangles, read from its OBJ by this test (not by the library).
+std::vector<double> read_obj_triangles(const std::string& path, double scale, const double* at) {
+  std::ifstream in(path);
+  std::vector<double> v, tris;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream ls(line);
+    std::string tag;
+    ls >> tag;
+    if (tag == "v") {
+      double x, y, z;
+      ls >> x >> y >> z;
+      v.insert(v.end(), {x * scale + at[0], y * scale + at[1], z * scale + at[2]});
+    } else if (tag == "f") {
+      std::string a;
+      std::vector<int> idx;
+      while (ls >> a) idx.push_back(std::stoi(a.substr(0, a.find('/'))) - 1);
+      for (size_t k = 1; k + 1 < idx.size(); ++k)
+        for (int c : {idx[0], idx[k], idx[k + 1]}) tris.insert(tris.end(), &v[3 * c], &v[3 * c] + 3);
+    }
+  }
+  return tris;
+}
+
+// Curved optics must reduce to straight optics: in a constant medium every pixel hits
+// exactly the triangle a straight pinhole ray through its centre hits (found here by
+// brute force over the mesh), at the same distance.
+TEST_F(Render, AConstantMediumRendersTheStraightPinholeImage) {
+  const double at[3] = {0, 0, -5};
+  const std::string camera =
+      R"({"position": [0, 0, 0], "look_at": [0, 0, -1], "up": [0, 1, 0], "vfov_deg": 30, "width": 48, "height": 32})";
+  const std::string objects = R"([{"type": "mesh", "file": ")" + mesh("icosphere.obj") +
+                              R"(", "material": "m", "translate": [0, 0, -5], "scale": 1.5}])";
+  arcus_scene_t* scene = load(scene_text(R"({"type": "constant", "n": 1.0})", camera, objects), "straight");
+  ASSERT_NE(scene, nullptr);
+  const Rendered img = render(scene, 0);
+  arcus_scene_release(scene);
+  const std::vector<double> tris = read_obj_triangles(mesh("icosphere.obj"), 1.5, at);
+  const double tan_half = std::tan(15.0 * M_PI / 180.0), aspect = 48.0 / 32.0;
+  int silhouette = 0;
+  for (uint32_t j = 0; j < img.height; ++j)
+    for (uint32_t i = 0; i < img.width; ++i) {
+      const size_t p = size_t(j) * img.width + i;
+      const double o[3] = {0, 0, 0};
+      const double d[3] = {(2.0 * (i + 0.5) / img.width - 1) * tan_half * aspect,
+                           (1 - 2.0 * (j + 0.5) / img.height) * tan_half, -1};
+      double best = INFINITY, t;
+      int tri = -1;
+      for (size_t k = 0; 9 * k < tris.size(); ++k)
+        if (ray_triangle(o, d, &tris[9 * k], &tris[9 * k + 3], &tris[9 * k + 6], &t) && t < best) {
+          best = t;
+          tri = static_cast<int>(k);
+        }
+      ASSERT_EQ(img.objects[p] >= 0, tri >= 0) << "pixel " << i << "," << j;
+      if (tri < 0) continue;
+      ++silhouette;
+      EXPECT_EQ(img.primitives[p], tri) << "pixel " << i << "," << j;
+      // The hit on the unit-speed straight path lies at arc length best·|d|; the kernel's
+      // crossing ends within its tolerance (atol 1e-6 m + rtol·5 m).
+      const double len = best * std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      EXPECT_NEAR(img.distances[p], len, 1e-6) << "pixel " << i << "," << j;
+    }
+  EXPECT_GT(silhouette, 100);  // the sphere covers a good part of the image
+}
+
+// Smart step selection skips tests but proves the skipped steps empty, so its hits are
+// exactly those of the exhaustive scan: same object, same primitive, same point.
+TEST_F(Render, SmartStepSelectionFindsExactlyTheExhaustiveScansHits) {
+  std::ifstream in(std::string(ARCUS_SOURCE_DIR) + "/scenes/inferior_mirage.json");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // A smaller image of the same scene (the test must stay short on two cores).
+  const size_t w = text.find("\"width\": 800"), h = text.find("\"height\": 400");
+  ASSERT_NE(w, std::string::npos);
+  ASSERT_NE(h, std::string::npos);
+  text.replace(h, 13, "\"height\": 60");
+  text.replace(w, 12, "\"width\": 120");
+  const std::string mesh_ref = "../data/meshes/tower.ply";
+  text.replace(text.find(mesh_ref), mesh_ref.size(), mesh("tower.ply"));
+  arcus_scene_t* scene = load(text, "smart");
+  ASSERT_NE(scene, nullptr);
+  const Rendered full = render(scene, 0);
+  const Rendered smart = render(scene, ARCUS_TECHNIQUE_SMART_STEP, 2);  // the second frame predicts from the first
+  const Rendered spatial = render(scene, ARCUS_TECHNIQUE_SMART_STEP, 1);
+  arcus_scene_release(scene);
+  for (const Rendered* r : {&smart, &spatial}) {
+    ASSERT_EQ(r->objects.size(), full.objects.size());
+    int hits = 0;
+    for (size_t p = 0; p < full.objects.size(); ++p) {
+      ASSERT_EQ(r->objects[p], full.objects[p]) << "pixel " << p;
+      ASSERT_EQ(r->primitives[p], full.primitives[p]) << "pixel " << p;
+      if (full.objects[p] < 0) continue;
+      ++hits;
+      for (int a = 0; a < 3; ++a) EXPECT_EQ(r->points[3 * p + a], full.points[3 * p + a]) << "pixel " << p;
+    }
+    EXPECT_GT(hits, 1000);
+  }
+  EXPECT_LT(smart.stats.tests, full.stats.tests);
+}
+
+// Hard cases stay finite and sensible: an empty scene, a camera inside a closed mesh,
+// and a sun 1.5e11 m away, in double and in float.
+TEST_F(Render, AnEmptySceneShowsTheSkyEverywhere) {
+  arcus_scene_t* scene = load(scene_text(R"({"type": "constant", "n": 1.0})",
+                                         R"({"position": [0, 0, 0], "look_at": [1, 0, 0], "vfov_deg": 40,
+                                             "width": 16, "height": 8})",
+                                         "[]", R"(, "bounds": {"min": [-10, -10, -10], "max": [10, 10, 10]})"),
+                              "empty");
+  ASSERT_NE(scene, nullptr);
+  const Rendered img = render(scene, 0);
+  arcus_scene_release(scene);
+  for (size_t p = 0; p < img.objects.size(); ++p) {
+    EXPECT_EQ(img.objects[p], -1);
+    EXPECT_FLOAT_EQ(img.rgb[3 * p + 2], 0.4f);
+  }
+}
+
+TEST_F(Render, ACameraInsideAClosedMeshSeesItsInsideEverywhere) {
+  const std::string objects =
+      R"([{"type": "mesh", "file": ")" + mesh("icosphere.obj") + R"(", "material": "m", "scale": 3}])";
+  arcus_scene_t* scene = load(scene_text(R"({"type": "linear", "n0": 1.0, "gradient": [0, 0.01, 0]})",
+                                         R"({"position": [0.1, 0.2, 0.3], "look_at": [1, 0, 0], "vfov_deg": 120,
+                                             "width": 24, "height": 16})",
+                                         objects),
+                              "inside");
+  ASSERT_NE(scene, nullptr);
+  const Rendered img = render(scene, ARCUS_TECHNIQUE_SMART_STEP);
+  arcus_scene_release(scene);
+  for (size_t p = 0; p < img.objects.size(); ++p) {
+    EXPECT_EQ(img.objects[p], 0) << "pixel " << p;
+    // Every hit lies on the sphere of radius 3 to within the icosphere's flattening.
+    const double r = std::sqrt(img.points[3 * p] * img.points[3 * p] + img.points[3 * p + 1] * img.points[3 * p + 1] +
+                               img.points[3 * p + 2] * img.points[3 * p + 2]);
+    EXPECT_GT(r, 3 * 0.98);
+    EXPECT_LT(r, 3 * 1.0 + 1e-9);
+  }
+}
+
+// The sun as a sphere 1.5e11 m away whose radius subtends 0.53°: a camera looking at it
+// sees it in the middle of the image and the sky at the corners, in double and float.
+TEST_F(Render, TheSunAtOnePointFiveTimesTenToTheElevenMetresIsHitInDoubleAndFloat) {
+  for (const char* precision : {"double", "float"}) {
+    const double d = 1.5e11, radius = d * std::tan(0.265 * M_PI / 180);
+    std::ostringstream text;
+    text.precision(17);
+    text << R"({"name": "sun", "medium": {"type": "constant", "n": 1.0},
+               "integrator": {"method": "dp45", "length": 3e11, "precision": ")"
+         << precision << R"("},
+               "camera": {"position": [0, 0, 0], "look_at": [1, 0, 0], "vfov_deg": 1.0, "width": 21, "height": 21},
+               "materials": {"sun": {"emission": [1, 1, 1]}},
+               "objects": [{"type": "sphere", "center": [)"
+         << d << R"(, 0, 0], "radius": )" << radius << R"(, "material": "sun"}],
+               "sky": {"type": "constant", "color": [0, 0, 0]}})";
+    arcus_scene_t* scene = load(text.str(), precision);
+    ASSERT_NE(scene, nullptr);
+    const Rendered img = render(scene, 0);
+    arcus_scene_release(scene);
+    ASSERT_EQ(img.objects.size(), 21u * 21u);
+    EXPECT_EQ(img.objects[10 * 21 + 10], 0) << precision;  // the centre
+    EXPECT_EQ(img.objects[0], -1) << precision;            // a corner: 0.7° off axis
+    // The disc's radius is 0.265° = 5.3 pixels of 1/21°: pixels within 5 of the centre hit.
+    for (int j = 0; j < 21; ++j)
+      for (int i = 0; i < 21; ++i) {
+        const double r = std::hypot(i - 10, j - 10);
+        if (r < 4.5) EXPECT_EQ(img.objects[j * 21 + i], 0) << precision << " " << i << "," << j;
+        if (r > 6.5) EXPECT_EQ(img.objects[j * 21 + i], -1) << precision << " " << i << "," << j;
+        if (img.objects[j * 21 + i] == 0) {
+          // The straight ray through the pixel's centre meets the sphere at the closed
+          // form t = (D² − r²) / (b + sqrt(b² − D² + r²)), b = D·dx/|d| (stable form):
+          // in double to 1e-4 of the radius.  In float the end of a 1.5e11 m step rounds
+          // to 1 part in 1.7e7, so float is held to 1e-6 of the distance (README,
+          // "Precision").
+          const double t = std::tan(0.5 * M_PI / 180);
+          const double px = (2.0 * (i + 0.5) / 21 - 1) * t, py = (1 - 2.0 * (j + 0.5) / 21) * t;
+          const double b = d / std::sqrt(1 + px * px + py * py);
+          const double expected = (d * d - radius * radius) / (b + std::sqrt(b * b - d * d + radius * radius));
+          const bool single = std::string(precision) == "float";
+          EXPECT_NEAR(img.distances[j * 21 + i], expected, single ? 1e-6 * d : 1e-4 * radius) << precision;
+          EXPECT_FLOAT_EQ(img.rgb[3 * (j * 21 + i)], 1.0f);
+        }
+      }
+  }
+}
+
+// ---- bad input: a status and a message naming the file and the key -----------------
+
+TEST_F(Render, AMissingMeshFileIsAnIoErrorNamingTheSceneTheKeyAndTheFile) {
+  const std::string text = scene_text(
+      R"({"type": "constant", "n": 1.0})",
+      R"({"position": [0, 0, 0], "look_at": [1, 0, 0], "vfov_deg": 40, "width": 4, "height": 4})",
+      R"([{"type": "mesh", "file": "/nonexistent/ship.obj", "material": "m"}])");
+  const auto [status, message] = load_error(temp_file("missing", ".json", text));
+  EXPECT_EQ(status, ARCUS_ERROR_IO);
+  EXPECT_NE(message.find("$.objects[0].file"), std::string::npos) << message;
+  EXPECT_NE(message.find("/nonexistent/ship.obj"), std::string::npos) << message;
+}
+
+TEST_F(Render, AMeshWithoutFacesIsRefused) {
+  const std::string obj = temp_file("nofaces", ".obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  const std::string text = scene_text(
+      R"({"type": "constant", "n": 1.0})",
+      R"({"position": [0, 0, 0], "look_at": [1, 0, 0], "vfov_deg": 40, "width": 4, "height": 4})",
+      R"([{"type": "mesh", "file": ")" + obj + R"(", "material": "m"}])");
+  const auto [status, message] = load_error(temp_file("nofaces", ".json", text));
+  EXPECT_EQ(status, ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(message.find(obj), std::string::npos) << message;
+}
+
+TEST_F(Render, MalformedScenesNameTheFileAndTheKey) {
+  const std::string cam =
+      R"({"position": [0, 0, 0], "look_at": [1, 0, 0], "vfov_deg": 40, "width": 0, "height": 4})";
+  auto [status, message] = load_error(temp_file("zero", ".json", scene_text(R"({"type": "constant", "n": 1.0})", cam, "[]")));
+  EXPECT_EQ(status, ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(message.find("$.camera"), std::string::npos) << message;
+  const std::string bad_material = scene_text(
+      R"({"type": "constant", "n": 1.0})",
+      R"({"position": [0, 0, 0], "look_at": [1, 0, 0], "vfov_deg": 40, "width": 4, "height": 4})",
+      R"([{"type": "sphere", "center": [5, 0, 0], "radius": 1, "material": "gold"}])");
+  std::tie(status, message) = load_error(temp_file("material", ".json", bad_material));
+  EXPECT_EQ(status, ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(message.find("$.objects[0].material"), std::string::npos) << message;
+  std::tie(status, message) = load_error(temp_file("json", ".json", R"({"name": "x", "camera": {)"));
+  EXPECT_EQ(status, ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(message.find("arcus_render_json"), std::string::npos) << message;
+}
+
+TEST_F(Render, ANanCameraAndUnimplementedTechniquesAreRefusedAndChangeNothing) {
+  arcus_scene_t* scene = load(scene_text(R"({"type": "constant", "n": 1.0})",
+                                         R"({"position": [0, 0, 0], "look_at": [1, 0, 0], "vfov_deg": 40,
+                                             "width": 4, "height": 4})",
+                                         "[]", R"(, "bounds": {"min": [-1, -1, -1], "max": [1, 1, 1]})"),
+                              "nan");
+  ASSERT_NE(scene, nullptr);
+  arcus_renderer_t* r = nullptr;
+  ASSERT_EQ(arcus_renderer_create(scene, &r), ARCUS_SUCCESS);
+  arcus_camera cam;
+  ASSERT_EQ(arcus_renderer_get_camera(r, &cam), ARCUS_SUCCESS);
+  arcus_camera bad = cam;
+  bad.position[1] = NAN;
+  EXPECT_EQ(arcus_renderer_set_camera(r, &bad), ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_error().find("finite"), std::string::npos) << last_error();
+  arcus_camera now;
+  ASSERT_EQ(arcus_renderer_get_camera(r, &now), ARCUS_SUCCESS);
+  EXPECT_EQ(now.position[1], cam.position[1]);
+  EXPECT_EQ(arcus_renderer_set_techniques(r, ARCUS_TECHNIQUE_SYMMETRY), ARCUS_ERROR_UNSUPPORTED);
+  EXPECT_NE(last_error().find("not implemented"), std::string::npos) << last_error();
+  uint32_t t = 99;
+  ASSERT_EQ(arcus_renderer_get_techniques(r, &t), ARCUS_SUCCESS);
+  EXPECT_EQ(t, 0u);
+  arcus_renderer_release(r);
+  arcus_scene_release(scene);
+}
+
+}  // namespace
