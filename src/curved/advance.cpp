@@ -282,17 +282,7 @@ bool run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
   dev.istate = std::make_unique<DeviceBuffer>(ctx, ARCUS_STATE_INTS * stride * sizeof(int32_t), "the ray state");
   if (p.record_path)
     dev.path = std::make_unique<DeviceBuffer>(ctx, static_cast<size_t>(path_bytes), "record_path");
-  std::shared_ptr<DeviceBuffer>& data = field->device_data[single ? 1 : 0];
-  if (!data && !field->data.empty()) {
-    // Doubles go up as they are; only float needs a converted copy on the way.
-    const size_t n = field->data.size();
-    if (single) {
-      const std::vector<float> values(field->data.begin(), field->data.end());
-      data = std::make_shared<DeviceBuffer>(ctx, n * sizeof(float), "the field's data", values.data());
-    } else {
-      data = std::make_shared<DeviceBuffer>(ctx, n * sizeof(double), "the field's data", field->data.data());
-    }
-  }
+  DeviceBuffer* data = field_data_on_device(ctx, field, single);
 
   KernelCall kernel(program, "arcus_advance");
   kernel.set(0, dev.input.get());
@@ -301,7 +291,7 @@ bool run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
   kernel.set(3, dev.istate.get());
   kernel.set(4, dev.path.get());
   kernel.set_value(5, field_desc_as<FieldDesc>(field->desc));
-  kernel.set(6, data.get());
+  kernel.set(6, data);
   if (ext && ext->set_args) ext->set_args(kernel, 8, stride, single);
 
   // Slices: up to `units` steps of every ray (fixed) or attempts (DP45) per launch.
@@ -394,6 +384,37 @@ bool run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
   }
   return cancelled;
 }
+
+}  // namespace
+
+DeviceBuffer* field_data_on_device(arcus_context_t* ctx, arcus_field_t* field, bool single) {
+  std::shared_ptr<DeviceBuffer>& data = field->device_data[single ? 1 : 0];
+  if (!data && !field->data.empty()) {
+    // Doubles go up as they are; only float needs a converted copy on the way.
+    const size_t n = field->data.size();
+    if (single) {
+      const std::vector<float> values(field->data.begin(), field->data.end());
+      data = std::make_shared<DeviceBuffer>(ctx, n * sizeof(float), "the field's data", values.data());
+    } else {
+      data = std::make_shared<DeviceBuffer>(ctx, n * sizeof(double), "the field's data", field->data.data());
+    }
+  }
+  return data.get();
+}
+
+void set_field_and_job(KernelCall& kernel, unsigned field_arg, unsigned job_arg, arcus_context_t* ctx,
+                       arcus_field_t* field, const arcus_advance_params& p, const Plan& plan, size_t stride) {
+  if (plan.single) {
+    kernel.set_value(field_arg, field_desc_as<arcus_field_desc_f>(field->desc));
+    kernel.set_value(job_arg, make_advance_desc<arcus_advance_desc_f, float>(p, field->desc, plan, stride));
+  } else {
+    kernel.set_value(field_arg, field_desc_as<arcus_field_desc_d>(field->desc));
+    kernel.set_value(job_arg, make_advance_desc<arcus_advance_desc_d, double>(p, field->desc, plan, stride));
+  }
+  kernel.set(field_arg + 1, field_data_on_device(ctx, field, plan.single));
+}
+
+namespace {
 
 arcus_features field_feature(int32_t kind) {
   switch (kind) {

@@ -59,6 +59,16 @@ struct Plan {
 Plan plan_advance(const arcus_advance_params& params, const arcus_field_desc_d& field, const std::vector<double>& data,
                   const arcus_device_info& device, const DeviceEntry& entry, bool with_wavelengths);
 
+// The field's data on ctx's device in the kernels' precision (uploaded on first use and
+// kept with the field); null for a field without data.
+DeviceBuffer* field_data_on_device(arcus_context_t* ctx, arcus_field_t* field, bool single);
+
+// Sets a kernel's field description, field data (field_arg + 1) and job description
+// (job_arg) as the advance kernel takes them: for other kernels of the same program
+// (the renderer's walk over stored paths).
+void set_field_and_job(KernelCall& kernel, unsigned field_arg, unsigned job_arg, arcus_context_t* ctx,
+                       arcus_field_t* field, const arcus_advance_params& params, const Plan& plan, size_t stride);
+
 // What another engine adds to an advance (the renderer's per-step hook against its
 // geometry, render/hits.h): features and the kernel source that compiles them, kernel
 // arguments after the advance kernel's own, and a look at its buffers after the run.

@@ -89,21 +89,12 @@ struct Primary {
         tests(n, 0), end_step(n, -1), position(3 * n, NAN), direction(3 * n, 0), length(n, 0), steps(n, 0) {}
 };
 
-// Traces a batch; stores results per pixel (tests and steps add up over retries).
+// Stores a trace's or walk's results per pixel (tests and steps add up over retries).
 // Returns the indices (into the batch) of rays that must be traced again.
-std::vector<size_t> trace_batch(arcus_context_t* ctx, arcus_renderer_s* r, const Batch& b, bool predict,
-                                Primary* out, arcus_render_stats* st) {
-  TraceInput in;
-  in.count = b.size();
-  in.origins = b.origins.data();
-  in.directions = b.directions.data();
-  in.predictions = predict ? b.predictions.data() : nullptr;
-  const TraceOutput t = trace(ctx, r->scene, r->params, in);
-  st->trace_seconds += t.stats.total_seconds;
-  st->rays_traced += b.size();
+std::vector<size_t> store(const TraceOutput& t, const std::vector<size_t>& pixels, Primary* out) {
   std::vector<size_t> retry;
-  for (size_t k = 0; k < b.size(); ++k) {
-    const size_t p = b.pixels[k];
+  for (size_t k = 0; k < pixels.size(); ++k) {
+    const size_t p = pixels[k];
     out->tests[p] += t.tests[k];
     out->steps[p] += t.steps[k];
     if (t.status[k] == ARCUS_STATUS_RETRY) {
@@ -125,6 +116,19 @@ std::vector<size_t> trace_batch(arcus_context_t* ctx, arcus_renderer_s* r, const
     }
   }
   return retry;
+}
+
+std::vector<size_t> trace_batch(arcus_context_t* ctx, arcus_renderer_s* r, const Batch& b, bool predict,
+                                Primary* out, arcus_render_stats* st) {
+  TraceInput in;
+  in.count = b.size();
+  in.origins = b.origins.data();
+  in.directions = b.directions.data();
+  in.predictions = predict ? b.predictions.data() : nullptr;
+  const TraceOutput t = trace(ctx, r->scene, r->params, in);
+  st->trace_seconds += t.stats.total_seconds;
+  st->rays_traced += b.size();
+  return store(t, b.pixels, out);
 }
 
 // Smart step selection's spatial prediction (thesis §4.3.3): a coarse grid of pixels
@@ -308,15 +312,170 @@ void shade(arcus_context_t* ctx, arcus_renderer_s* r, const Primary& prim, Rende
 
 }  // namespace
 
+namespace {
+
+// Why the medium is not symmetric about the camera's vertical plane (the plane through
+// the camera holding its view and up directions), "" if it is (thesis §4.3.2.2): then
+// every path of the image's right half is the mirror image of one of the left half.
+std::string asymmetry(const arcus_renderer_s& r) {
+  const Frame f = camera_frame(r.camera);
+  const arcus_field_desc_d& d = r.scene->field->desc;
+  const double tol = 1e-12;
+  auto along = [&](const double* v) { return std::fabs(dot(v3(v), f.right)) <= tol * std::sqrt(dot(v3(v), v3(v))); };
+  auto on_plane = [&](const double* p) {
+    return std::fabs(dot(v3(p) - f.origin, f.right)) <= tol * std::max(1.0, std::sqrt(dot(v3(p), v3(p))));
+  };
+  switch (d.kind) {
+    case ARCUS_KIND_CONSTANT: return "";
+    case ARCUS_KIND_LINEAR:
+    case ARCUS_KIND_LINEAR_N2:
+      return along(d.vec) ? "" : "the medium's gradient is not parallel to the camera's vertical plane";
+    case ARCUS_KIND_LUNEBURG:
+    case ARCUS_KIND_FISHEYE:
+      return on_plane(d.origin) ? "" : "the lens's centre does not lie in the camera's vertical plane";
+    case ARCUS_KIND_ATMOSPHERE: {
+      if (d.spherical) {
+        const double centre[3] = {0, 0, 0};
+        return on_plane(centre) ? "" : "the Earth's centre does not lie in the camera's vertical plane (tilt or turn the camera)";
+      }
+      const double up[3] = {0, 1, 0};
+      return along(up) ? "" : "the camera's horizontal axis is not level (roll), so its vertical plane is not vertical";
+    }
+    default: return "a grid medium has no symmetry arcus can check";
+  }
+}
+
+// Every pixel's path for the path-based techniques: the traced pixels' paths
+// integrated and recorded, the others mirrored (symmetry) or interpolated between
+// their traced neighbours (undersampling) as they are walked.
+PathFrame pixel_paths(arcus_context_t* ctx, arcus_renderer_s* r, const Frame& f, uint32_t capacity_hint,
+                      arcus_render_stats* st) {
+  const CameraDesc& c = r->camera;
+  const bool symmetric = r->techniques & ARCUS_TECHNIQUE_SYMMETRY;
+  const bool under = r->techniques & ARCUS_TECHNIQUE_UNDERSAMPLE;
+  const uint32_t half = symmetric ? (c.width + 1) / 2 : c.width;  // the columns computed
+  // Undersampling traces a checkerboard (α = ½) and interpolates the others between
+  // their left and right neighbours, which must both be traced: the first and last
+  // computed columns are traced whole.
+  auto traced = [&](uint32_t i, uint32_t j) { return !under || (i + j) % 2 == 0 || i == 0 || i + 1 == half; };
+  Batch b;
+  std::vector<int32_t> slot(static_cast<size_t>(c.width) * c.height, -1);
+  for (uint32_t j = 0; j < c.height; ++j)
+    for (uint32_t i = 0; i < half; ++i)
+      if (traced(i, j)) {
+        const size_t p = static_cast<size_t>(j) * c.width + i;
+        slot[p] = static_cast<int32_t>(b.size());
+        b.add(f.origin, pixel_direction(f, c, i, j), p, -1);
+      }
+  TraceInput in;
+  in.count = b.size();
+  in.origins = b.origins.data();
+  in.directions = b.directions.data();
+  arcus_job_stats js{};
+  PathFrame frame;
+  frame.paths = record_paths(ctx, r->scene, r->params, in, capacity_hint, &js);
+  st->trace_seconds += js.total_seconds;
+  st->rays_traced += b.size();
+  // The mirror: the plane through the camera normal to its right axis.
+  for (int a = 0; a < 3; ++a) frame.plane.normal[a] = (&f.right.x)[a];
+  frame.plane.offset = dot(f.right, f.origin);
+  frame.rays.resize(slot.size());
+  for (uint32_t j = 0; j < c.height; ++j)
+    for (uint32_t i = 0; i < c.width; ++i) {
+      const size_t p = static_cast<size_t>(j) * c.width + i;
+      WalkRay& w = frame.rays[p];
+      if (i >= half) {
+        w = frame.rays[static_cast<size_t>(j) * c.width + (c.width - 1 - i)];
+        w.mirror = 1;
+        ++st->rays_mirrored;
+      } else if (slot[p] >= 0) {
+        w.a = slot[p];
+      } else {
+        w.a = slot[p - 1];
+        w.b = slot[p + 1];
+        ++st->rays_interpolated;
+      }
+    }
+  return frame;
+}
+
+}  // namespace
+
 std::string technique_problem(const arcus_renderer_s& r, uint32_t techniques) {
   if (techniques & ~static_cast<uint32_t>(ARCUS_TECHNIQUE_ALL))
     return "techniques: unknown bits " + std::to_string(techniques & ~static_cast<uint32_t>(ARCUS_TECHNIQUE_ALL));
-  const uint32_t path_based = ARCUS_TECHNIQUE_SYMMETRY | ARCUS_TECHNIQUE_UNDERSAMPLE | ARCUS_TECHNIQUE_PATH_CACHE;
-  if (techniques & path_based)
-    return "techniques: symmetry, undersampling and path caching are not implemented yet in this version";
-  (void)r;
+  if (techniques & ARCUS_TECHNIQUE_SYMMETRY) {
+    const std::string why = asymmetry(r);
+    if (!why.empty()) return "techniques: symmetry needs a medium symmetric about the camera's vertical plane: " + why;
+  }
   return "";
 }
+
+namespace {
+
+// The primary rays of a frame through stored paths: every pixel's path (from the cache,
+// or integrated, mirrored and interpolated now), walked against the scene, smart step
+// selection predicting from the last frame or from a coarse first walk.
+void walk_frame(arcus_context_t* ctx, arcus_renderer_s* r, const Frame& f, Primary* prim, arcus_render_stats* st) {
+  const CameraDesc& c = r->camera;
+  const size_t n = static_cast<size_t>(c.width) * c.height;
+  const bool cache = r->techniques & ARCUS_TECHNIQUE_PATH_CACHE;
+  const bool smart = r->techniques & ARCUS_TECHNIQUE_SMART_STEP;
+  std::unique_ptr<PathFrame> fresh;
+  const PathFrame* paths = nullptr;
+  if (cache && r->cached_paths && r->cached_paths->rays.size() == n) {
+    paths = r->cached_paths.get();
+    st->rays_cached = n;
+  } else {
+    // Room for the longest path the last frame saw, else a first guess.
+    uint32_t hint = 64;
+    if (r->previous_steps > 0) hint = static_cast<uint32_t>(std::min<uint64_t>(r->previous_steps + 2, 1u << 20));
+    fresh = std::make_unique<PathFrame>(pixel_paths(ctx, r, f, hint, st));
+    paths = fresh.get();
+  }
+  const auto walk_start = Clock::now();
+  const bool temporal = smart && r->previous_hit_step.size() == n;
+  std::vector<size_t> first, rest;
+  for (uint32_t j = 0; j < c.height; ++j)
+    for (uint32_t i = 0; i < c.width; ++i) {
+      const size_t p = static_cast<size_t>(j) * c.width + i;
+      (!smart || temporal || (i % kCoarse == 0 && j % kCoarse == 0) ? first : rest).push_back(p);
+    }
+  auto run = [&](const std::vector<size_t>& pixels, const std::vector<int32_t>* predictions) {
+    std::vector<WalkRay> rays;
+    rays.reserve(pixels.size());
+    for (size_t p : pixels) rays.push_back(paths->rays[p]);
+    const TraceOutput t = walk(ctx, r->scene, r->params, paths->paths, rays, paths->plane,
+                               predictions ? predictions->data() : nullptr);
+    std::vector<size_t> retry;
+    for (size_t k : store(t, pixels, prim)) retry.push_back(pixels[k]);
+    return retry;
+  };
+  std::vector<int32_t> predicted;
+  if (temporal)
+    for (size_t p : first) predicted.push_back(r->previous_hit_step[p]);
+  std::vector<size_t> again = run(first, temporal ? &predicted : nullptr);
+  if (!rest.empty()) {
+    predicted.clear();
+    for (size_t p : rest)
+      predicted.push_back(spatial_prediction(*prim, c, static_cast<uint32_t>(p % c.width),
+                                             static_cast<uint32_t>(p / c.width)));
+    for (size_t p : run(rest, &predicted)) again.push_back(p);
+  }
+  if (!again.empty()) {
+    st->rays_retried += again.size();
+    run(again, nullptr);
+  }
+  st->walk_seconds += since(walk_start);
+  if (cache) {
+    if (fresh) r->cached_paths = std::move(fresh);
+    st->cache_bytes = r->cached_paths->paths.bytes() + r->cached_paths->rays.size() * sizeof(WalkRay);
+  } else {
+    r->cached_paths.reset();
+  }
+}
+
+}  // namespace
 
 std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_callback progress, void* user) {
   const auto start = Clock::now();
@@ -335,8 +494,14 @@ std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_call
     if (progress && progress(user, fraction) != 0) fail(ARCUS_ERROR_CANCELLED, "the progress callback cancelled the frame");
   };
 
+  const uint32_t path_based = ARCUS_TECHNIQUE_SYMMETRY | ARCUS_TECHNIQUE_UNDERSAMPLE | ARCUS_TECHNIQUE_PATH_CACHE;
   const bool smart = r->techniques & ARCUS_TECHNIQUE_SMART_STEP;
   const bool temporal = smart && r->previous_hit_step.size() == n;
+  report(0.0);
+  if (r->techniques & path_based) {
+    walk_frame(ctx, r, f, &prim, &st);
+  } else {
+  r->cached_paths.reset();
   Batch first, rest;
   for (uint32_t j = 0; j < c.height; ++j)
     for (uint32_t i = 0; i < c.width; ++i) {
@@ -367,6 +532,7 @@ std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_call
     st.rays_retried = again.size();
     trace_batch(ctx, r, again, false, &prim, &st);
   }
+  }
   report(0.8);
 
   const auto shade_start = Clock::now();
@@ -390,6 +556,8 @@ std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_call
     st.tests += static_cast<uint64_t>(prim.tests[p]);
   }
   r->previous_hit_step = prim.end_step;
+  r->previous_steps = 0;
+  for (uint64_t k : prim.steps) r->previous_steps = std::max(r->previous_steps, k);
   job->features = ARCUS_FEATURE_GEOMETRY;
   st.total_seconds = since(start);
   job->stats.total_seconds = st.total_seconds;

@@ -8,6 +8,17 @@
 #include "arcus/arcus_render.h"
 #include "core/job.h"
 #include "render/scene.h"
+#include "render/trace.h"
+
+namespace arcus::render {
+// Every pixel's path for the path-based techniques: the recorded paths (on the device)
+// and, per pixel, which of them it follows (mirrored, interpolated).
+struct PathFrame {
+  DevicePaths paths;
+  std::vector<WalkRay> rays;
+  MirrorPlane plane;
+};
+}  // namespace arcus::render
 
 struct arcus_renderer_s : arcus::Handle {
   arcus_renderer_s(arcus_context_t* ctx, arcus::render::RenderScene* scene);
@@ -18,10 +29,17 @@ struct arcus_renderer_s : arcus::Handle {
   uint32_t techniques = 0;
   arcus_advance_params params{};
   // What the last frame leaves to the next while the camera rests: each pixel's hit
-  // step (smart step selection's temporal prediction).
+  // step (smart step selection's temporal prediction) and, with PATH_CACHE, every
+  // pixel's path (thesis §4.3.2.4; on the host, its size reported as cache_bytes).
   std::vector<int32_t> previous_hit_step;
+  uint64_t previous_steps = 0;  // the most steps a primary ray took
+  std::unique_ptr<arcus::render::PathFrame> cached_paths;
 
-  void reset_frames() { previous_hit_step.clear(); }
+  void reset_frames() {
+    previous_hit_step.clear();
+    previous_steps = 0;
+    cached_paths.reset();
+  }
 };
 
 namespace arcus::render {

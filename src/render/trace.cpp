@@ -1,5 +1,8 @@
 #include "render/trace.h"
 
+#include <array>
+#include <chrono>
+#include <cmath>
 #include <memory>
 #include <string>
 
@@ -7,32 +10,61 @@
 #include "curved/advance.h"
 
 namespace arcus::render {
+namespace {
 
-TraceOutput trace(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params p, const TraceInput& in) {
-  const bool single = p.precision == ARCUS_PRECISION_FLOAT;
-  scene->upload(ctx, single);
-  const auto& bvh = scene->device_bvh[single ? 1 : 0];
-  const auto& shapes = scene->device_shapes[single ? 1 : 0];
-  p.use_box = 1;
-  for (int a = 0; a < 3; ++a) {
-    p.box_min[a] = scene->lo[a];
-    p.box_max[a] = scene->hi[a];
+// The hit records the kernels left (render_desc.h layout, `stride` entries per
+// component) as objects and primitives of the scene.
+void fill_hits(const RenderScene* scene, const bvh::DeviceBvh* bvh, const std::vector<int32_t>& hit_ints, size_t stride,
+               size_t count, TraceOutput* out) {
+  out->object.assign(count, -1);
+  out->primitive.assign(count, -1);
+  out->hit_step.assign(count, -1);
+  out->hit_kind.assign(count, ARCUS_HIT_NONE);
+  out->hit_index.assign(count, -1);
+  out->tests.assign(count, 0);
+  for (size_t i = 0; i < count && stride; ++i) {
+    const int32_t kind = hit_ints[ARCUS_HIT_KIND * stride + i];
+    const int32_t index = hit_ints[ARCUS_HIT_INDEX * stride + i];
+    out->tests[i] = hit_ints[ARCUS_HIT_TESTS * stride + i];
+    if (out->status[i] != ARCUS_STATUS_HIT) continue;
+    out->hit_step[i] = hit_ints[ARCUS_HIT_STEP * stride + i];
+    out->hit_kind[i] = kind;
+    if (kind == ARCUS_HIT_TRIANGLE) {
+      const uint32_t tri = bvh->order()[static_cast<size_t>(index)];
+      const uint32_t mesh = scene->triangles.geometry[tri];
+      out->hit_index[i] = static_cast<int32_t>(tri);
+      out->object[i] = scene->mesh_object[mesh];
+      out->primitive[i] = static_cast<int32_t>(tri - scene->triangles.mesh_first[mesh]);
+    } else if (kind == ARCUS_HIT_SHAPE) {
+      out->hit_index[i] = index;
+      out->object[i] = scene->shape_object[static_cast<size_t>(index)];
+      out->primitive[i] = 0;
+    }
   }
-  p.record_path = 0;
+}
 
-  TraceOutput out;
-  std::vector<int32_t> hit_ints;
+// The scene's bounds as the job's box.
+void use_bounds(const RenderScene* scene, arcus_advance_params* p) {
+  p->use_box = 1;
+  for (int a = 0; a < 3; ++a) {
+    p->box_min[a] = scene->lo[a];
+    p->box_max[a] = scene->hi[a];
+  }
+}
+
+// The geometry arguments of the trace and walk kernels (GEOMETRY_PARAMS in advance.cl),
+// with the hit records and predictions they fill or read.
+struct GeometryArgs {
   std::unique_ptr<DeviceBuffer> hits, hit_reals, predictions;
-  curved::AdvanceExtension ext;
-  ext.features = ARCUS_FEATURE_GEOMETRY;
-  ext.source = &trace_source();
-  ext.set_args = [&](KernelCall& kernel, unsigned arg, size_t stride, bool is_single) {
-    const size_t real = is_single ? sizeof(float) : sizeof(double);
+  void set(arcus_context_t* ctx, RenderScene* scene, bool single, KernelCall& kernel, unsigned arg, size_t stride,
+           size_t count, const int32_t* predicted) {
+    const size_t real = single ? sizeof(float) : sizeof(double);
+    const auto& bvh = scene->device_bvh[single ? 1 : 0];
     hits = std::make_unique<DeviceBuffer>(ctx, ARCUS_HIT_INTS * stride * sizeof(int32_t), "the hit records");
     hit_reals = std::make_unique<DeviceBuffer>(ctx, ARCUS_HIT_REALS * stride * real, "the hit records");
-    if (in.predictions) {
+    if (predicted) {
       std::vector<int32_t> pred(stride, -1);
-      std::copy(in.predictions, in.predictions + in.count, pred.begin());
+      std::copy(predicted, predicted + count, pred.begin());
       predictions = std::make_unique<DeviceBuffer>(ctx, stride * sizeof(int32_t), "the predicted steps", pred.data());
     }
     arcus_geometry_desc geo{};
@@ -40,59 +72,203 @@ TraceOutput trace(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params
     geo.triangle_count = static_cast<int32_t>(scene->triangles.triangle_count());
     kernel.set(arg++, bvh ? bvh->nodes().get() : nullptr);
     kernel.set(arg++, bvh ? bvh->triangles().get() : nullptr);
-    kernel.set(arg++, shapes.get());
+    kernel.set(arg++, scene->device_shapes[single ? 1 : 0].get());
     kernel.set_value(arg++, geo);
     kernel.set(arg++, hits.get());
     kernel.set(arg++, hit_reals.get());
     kernel.set(arg++, predictions.get());
-  };
-  size_t stride_seen = 0;
-  ext.finished = [&](size_t stride, bool) {
-    stride_seen = stride;
-    hit_ints.resize(ARCUS_HIT_INTS * stride);
-    hits->read(ctx, 0, hit_ints.size() * sizeof(int32_t), hit_ints.data());
-  };
+  }
+  std::vector<int32_t> read(arcus_context_t* ctx, size_t stride) const {
+    std::vector<int32_t> v(ARCUS_HIT_INTS * stride);
+    hits->read(ctx, 0, v.size() * sizeof(int32_t), v.data());
+    return v;
+  }
+};
 
+// Runs an advance with `ext` and takes its job (the caller holds the context).
+std::unique_ptr<curved::AdvanceJob> run_advance(arcus_context_t* ctx, RenderScene* scene,
+                                                const arcus_advance_params& p, const TraceInput& in,
+                                                const curved::AdvanceExtension& ext) {
   arcus_job_t* raw = nullptr;
   std::string message;
-  const arcus_status status = curved::advance(ctx, scene->field, p, in.count, in.origins, in.directions,
-                                              in.wavelengths, &raw, &message, &ext);
+  const arcus_status status =
+      curved::advance(ctx, scene->field, p, in.count, in.origins, in.directions, in.wavelengths, &raw, &message, &ext);
   std::unique_ptr<curved::AdvanceJob> job(static_cast<curved::AdvanceJob*>(raw));
   if (job) job->owner()->drop();  // the job's reference to its context: the caller holds others
   if (status != ARCUS_SUCCESS) fail(status, message);
+  return job;
+}
 
+}  // namespace
+
+TraceOutput trace(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params p, const TraceInput& in) {
+  const bool single = p.precision == ARCUS_PRECISION_FLOAT;
+  scene->upload(ctx, single);
+  use_bounds(scene, &p);
+  p.record_path = 0;
+  GeometryArgs geometry;
+  std::vector<int32_t> hit_ints;
+  size_t stride_seen = 0;
+  curved::AdvanceExtension ext;
+  ext.features = ARCUS_FEATURE_GEOMETRY;
+  ext.source = &trace_source();
+  ext.set_args = [&](KernelCall& kernel, unsigned arg, size_t stride, bool is_single) {
+    geometry.set(ctx, scene, is_single, kernel, arg, stride, in.count, in.predictions);
+  };
+  ext.finished = [&](size_t stride, bool) {
+    stride_seen = stride;
+    hit_ints = geometry.read(ctx, stride);
+  };
+  const auto job = run_advance(ctx, scene, p, in, ext);
+  TraceOutput out;
   out.positions = std::move(job->positions);
   out.directions = std::move(job->directions);
   out.lengths = std::move(job->lengths);
   out.steps = std::move(job->steps);
   out.status = std::move(job->status);
   out.stats = job->stats;
-  out.object.assign(in.count, -1);
-  out.primitive.assign(in.count, -1);
-  out.hit_step.assign(in.count, -1);
-  out.hit_kind.assign(in.count, ARCUS_HIT_NONE);
-  out.hit_index.assign(in.count, -1);
-  out.tests.assign(in.count, 0);
-  const auto& order = bvh ? bvh->order() : std::vector<uint32_t>();
-  for (size_t i = 0; i < in.count && stride_seen; ++i) {
-    const int32_t kind = hit_ints[ARCUS_HIT_KIND * stride_seen + i];
-    const int32_t index = hit_ints[ARCUS_HIT_INDEX * stride_seen + i];
-    out.tests[i] = hit_ints[ARCUS_HIT_TESTS * stride_seen + i];
-    if (out.status[i] != ARCUS_STATUS_HIT) continue;
-    out.hit_step[i] = hit_ints[ARCUS_HIT_STEP * stride_seen + i];
-    out.hit_kind[i] = kind;
-    if (kind == ARCUS_HIT_TRIANGLE) {
-      const uint32_t tri = order[static_cast<size_t>(index)];
-      out.hit_index[i] = static_cast<int32_t>(tri);
-      const uint32_t mesh = scene->triangles.geometry[tri];
-      out.object[i] = scene->mesh_object[mesh];
-      out.primitive[i] = static_cast<int32_t>(tri - scene->triangles.mesh_first[mesh]);
-    } else if (kind == ARCUS_HIT_SHAPE) {
-      out.hit_index[i] = index;
-      out.object[i] = scene->shape_object[static_cast<size_t>(index)];
-      out.primitive[i] = 0;
+  const auto& bvh = scene->device_bvh[single ? 1 : 0];
+  fill_hits(scene, bvh.get(), hit_ints, stride_seen, in.count, &out);
+  return out;
+}
+
+}  // namespace arcus::render
+
+namespace arcus::render {
+
+DevicePaths record_paths(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params p, const TraceInput& in,
+                         uint32_t capacity_hint, arcus_job_stats* stats) {
+  use_bounds(scene, &p);
+  p.record_path = 1;
+  p.path_capacity = std::max<uint32_t>(capacity_hint, 2);
+  DevicePaths paths;
+  curved::AdvanceExtension ext;
+  ext.features = ARCUS_FEATURE_RECORD_STATE;
+  ext.source = &trace_source();
+  ext.record_components = DevicePaths::kReals;
+  ext.take_paths = [&](std::unique_ptr<DeviceBuffer> b, uint32_t capacity) {
+    paths.points = std::move(b);
+    paths.capacity = capacity;
+  };
+  *stats = arcus_job_stats{};
+  // A first try with the hint; paths that need more room are known after it, so at
+  // most one more run records them all.
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    arcus_job_t* raw = nullptr;
+    std::string message;
+    const arcus_status status = curved::advance(ctx, scene->field, p, in.count, in.origins, in.directions,
+                                                in.wavelengths, &raw, &message, &ext);
+    std::unique_ptr<curved::AdvanceJob> job(static_cast<curved::AdvanceJob*>(raw));
+    if (job) job->owner()->drop();  // the job's reference to its context: the caller holds others
+    if (job) {
+      stats->total_seconds += job->stats.total_seconds;
+      stats->kernel_seconds += job->stats.kernel_seconds;
+      stats->launches += job->stats.launches;
     }
+    if (status == ARCUS_ERROR_PATH_OVERFLOW && attempt == 0) {
+      uint64_t longest = 0;
+      for (uint64_t n : job->path_needed) longest = std::max(longest, n);
+      require(longest < (uint64_t(1) << 31), "a path needs more than 2^31 points");
+      p.path_capacity = static_cast<uint32_t>(longest);
+      continue;
+    }
+    if (status != ARCUS_SUCCESS) fail(status, message);
+    paths.counts.resize(in.count);
+    paths.end_status = job->status;
+    for (size_t r = 0; r < in.count; ++r)
+      paths.counts[r] = static_cast<int32_t>(std::min<uint64_t>(job->path_needed[r], paths.capacity));
+    return paths;
   }
+  fail(ARCUS_ERROR_PATH_OVERFLOW, "paths kept growing while being recorded");
+}
+
+namespace {
+
+template <class Real>
+TraceOutput walk_in(arcus_context_t* ctx, RenderScene* scene, const arcus_advance_params& p, const DevicePaths& paths,
+                    const std::vector<WalkRay>& rays, const MirrorPlane& plane, const int32_t* predictions) {
+  const bool single = sizeof(Real) == sizeof(float);
+  const size_t count = rays.size();
+  const curved::Plan plan =
+      curved::plan_advance(p, scene->field->desc, scene->field->data, ctx->info, ctx->runtime->entry(), false);
+  const BuiltProgram program =
+      ctx->runtime->program(trace_source(), plan.features | ARCUS_FEATURE_GEOMETRY, plan.layout);
+  const size_t per_item = plan.layout.per_item();
+  const size_t items = std::max<size_t>(1, (count + per_item - 1) / per_item);
+  const size_t stride = items * per_item;
+
+  std::vector<int32_t> table(3 * stride, 0);
+  for (size_t r = 0; r < count; ++r) {
+    table[r] = rays[r].a;
+    table[r + stride] = rays[r].b;
+    table[r + 2 * stride] = rays[r].mirror;
+  }
+  std::vector<int32_t> counts = paths.counts, ends = paths.end_status;
+  if (counts.empty()) counts.push_back(0), ends.push_back(ARCUS_STATUS_INVALID_INPUT);  // no NULL buffers
+  DeviceBuffer d_counts(ctx, counts.size() * sizeof(int32_t), "the path lengths", counts.data());
+  DeviceBuffer d_end(ctx, ends.size() * sizeof(int32_t), "the path endings", ends.data());
+  DeviceBuffer d_rays(ctx, table.size() * sizeof(int32_t), "the walked rays", table.data());
+  DeviceBuffer d_out(ctx, DevicePaths::kReals * stride * sizeof(Real), "the walked rays");
+  DeviceBuffer d_status(ctx, stride * sizeof(int32_t), "the walked rays");
+  const std::array<Real, 4> mirror{static_cast<Real>(plane.normal[0]), static_cast<Real>(plane.normal[1]),
+                                   static_cast<Real>(plane.normal[2]), static_cast<Real>(plane.offset)};
+  KernelCall kernel(program.program, "arcus_walk");
+  kernel.set(0, paths.points.get());
+  kernel.set_value(1, static_cast<int32_t>(paths.capacity));
+  kernel.set(2, &d_counts);
+  kernel.set(3, &d_end);
+  kernel.set(4, &d_rays);
+  kernel.set_value(5, static_cast<int32_t>(count));
+  kernel.set_value(6, mirror);
+  kernel.set(7, nullptr);  // wavelengths: walks are not dispersive (see plan_advance above)
+  kernel.set(8, &d_out);
+  kernel.set(9, &d_status);
+  curved::set_field_and_job(kernel, 10, 12, ctx, scene->field, p, plan, stride);
+  GeometryArgs geometry;
+  geometry.set(ctx, scene, single, kernel, 13, stride, count, predictions);
+  TraceOutput out;
+  out.stats.kernel_seconds = kernel.run(ctx, items);
+  out.stats.launches = 1;
+
+  std::vector<Real> state(DevicePaths::kReals * stride);
+  d_out.read(ctx, 0, state.size() * sizeof(Real), state.data());
+  out.status.resize(count);
+  d_status.read(ctx, 0, count * sizeof(int32_t), out.status.data());
+  out.positions.resize(3 * count);
+  out.directions.resize(3 * count);
+  out.lengths.resize(count);
+  out.steps.resize(count);
+  for (size_t r = 0; r < count; ++r) {
+    double v[3];
+    for (int c = 0; c < 3; ++c) {
+      out.positions[3 * r + c] = static_cast<double>(state[c * stride + r]);
+      v[c] = static_cast<double>(state[(3 + c) * stride + r]);
+    }
+    const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    for (int c = 0; c < 3; ++c) out.directions[3 * r + c] = len > 0 ? v[c] / len : 0;
+    out.lengths[r] = static_cast<double>(state[6 * stride + r]);
+  }
+  fill_hits(scene, scene->device_bvh[single ? 1 : 0].get(), geometry.read(ctx, stride), stride, count, &out);
+  // The steps a walked ray stands for: the chords up to its hit, or all of its path's.
+  for (size_t r = 0; r < count; ++r)
+    out.steps[r] = out.status[r] == ARCUS_STATUS_HIT
+                       ? static_cast<uint64_t>(out.hit_step[r] + 1)
+                       : static_cast<uint64_t>(std::max(paths.counts[static_cast<size_t>(rays[r].a)], 1) - 1);
+  return out;
+}
+
+}  // namespace
+
+TraceOutput walk(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params p, const DevicePaths& paths,
+                 const std::vector<WalkRay>& rays, const MirrorPlane& plane, const int32_t* predictions) {
+  const auto start = std::chrono::steady_clock::now();
+  const bool single = p.precision == ARCUS_PRECISION_FLOAT;
+  scene->upload(ctx, single);
+  use_bounds(scene, &p);
+  p.record_path = 0;
+  TraceOutput out = single ? walk_in<float>(ctx, scene, p, paths, rays, plane, predictions)
+                           : walk_in<double>(ctx, scene, p, paths, rays, plane, predictions);
+  out.stats.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
 

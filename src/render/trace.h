@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "arcus/arcus_render.h"
@@ -33,9 +34,47 @@ struct TraceOutput {
   arcus_job_stats stats{};
 };
 
-// Traces `in` through the scene with `params` (the box is the scene's bounds).
-// Throws on errors; a cancelled trace is ARCUS_ERROR_CANCELLED.
+// Traces `in` through the scene with `params` (the box is the scene's bounds): each ray
+// stops on the first primitive its path crosses.  Throws on errors; a cancelled trace
+// is ARCUS_ERROR_CANCELLED.
 TraceOutput trace(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params params, const TraceInput& in);
+
+// Recorded paths, kept on the device in the kernels' precision: path r's net points,
+// each the whole state x y z vx vy vz s, are the first counts[r] of its `capacity`
+// slots; end_status[r] says how it ended.
+struct DevicePaths {
+  static constexpr int kReals = 7;
+  std::shared_ptr<DeviceBuffer> points;
+  uint32_t capacity = 0;
+  std::vector<int32_t> counts, end_status;
+  size_t count() const { return counts.size(); }
+  size_t bytes() const { return points ? points->bytes() : 0; }
+};
+
+// Integrates the rays' whole paths through the scene's bounds, ignoring its
+// primitives, and records every net point (symmetry, undersampling, the path cache):
+// the paths a trace follows, which walk() then intersects.  `capacity_hint`: points per
+// path to try first (a path that needs more is recorded again with room for it).
+DevicePaths record_paths(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params params, const TraceInput& in,
+                         uint32_t capacity_hint, arcus_job_stats* stats);
+
+// A walked ray follows recorded path a; or, with b >= 0, the path interpolated between
+// paths a and b at equal arc length along a's net points, as far as both reach
+// (undersampling); either one mirrored in `plane` when `mirror` (symmetry).
+struct WalkRay {
+  int32_t a = 0, b = -1, mirror = 0;
+};
+
+// A mirror plane: points p with normal·p = offset (normal a unit vector).
+struct MirrorPlane {
+  double normal[3] = {1, 0, 0};
+  double offset = 0;
+};
+
+// Intersects the walked rays' paths chord by chord, as trace() does while integrating:
+// a recorded path gives the trace's hit exactly.
+TraceOutput walk(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params params, const DevicePaths& paths,
+                 const std::vector<WalkRay>& rays, const MirrorPlane& plane, const int32_t* predictions);
 
 // The render engine's feature table and its kernel source (features.cpp).
 const KernelSource& trace_source();

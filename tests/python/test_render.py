@@ -42,9 +42,18 @@ def test_a_bad_scene_raises_with_the_file_and_key(tmp_path):
     assert "$.camera" in str(e.value) and "bad.json" in str(e.value)
 
 
-def test_unknown_and_unimplemented_techniques_are_refused(tmp_path):
+def test_unknown_techniques_and_symmetry_of_an_asymmetric_medium_are_refused(tmp_path):
     with pytest.raises(arcus.ArgumentError):
         arcus.render(small_scene(tmp_path), techniques=["warp"])
+    # The camera looks along -z with x to its right: a gradient along x is not symmetric.
+    asymmetric = small_scene(tmp_path, '{"type": "linear", "n0": 1.0, "gradient": [0.01, 0, 0]}')
     with pytest.raises(arcus.Error) as e:
-        arcus.render(small_scene(tmp_path), techniques=["symmetry"])
-    assert "not implemented" in str(e.value)
+        arcus.render(asymmetric, techniques=["symmetry"])
+    assert "symmetry" in str(e.value)
+
+
+def test_every_technique_gives_the_straight_image(tmp_path):
+    plain = arcus.render(small_scene(tmp_path))
+    for techniques in (["smart_step"], ["symmetry"], ["path_cache"], ["smart_step", "symmetry", "path_cache"]):
+        result = arcus.render(small_scene(tmp_path), techniques=techniques, frames=2)
+        assert (result.objects == plain.objects).all(), techniques

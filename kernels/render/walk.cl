@@ -1,0 +1,211 @@
+/* Intersecting recorded paths (thesis §4.3.2.2–4.3.2.4): a path recorded once (path
+ * caching), the mirror image of one (symmetry) or one interpolated between two
+ * (undersampling) is walked chord by chord through the same per-step hook as a traced
+ * ray (render/hits.h), so walking a recorded path gives the traced hit bit for bit.
+ * A net point is the whole state x y z vx vy vz s (ARCUS_USE_RECORD_STATE), so a hit is
+ * moved onto the integrated path by the integrator's own step from the chord's start,
+ * as when tracing.
+ *
+ * Path q's points are paths[(q·capacity + k)·7 ...] for k < counts[q], and
+ * end_status[q] says how it ended.  Walked ray r follows ray_a[r], or with ray_b[r] >= 0
+ * the path interpolated between the two at equal arc length along a's points as far as
+ * both reach (it ends as the shorter one ended), mirrored in `plane` (normal·p = d) if
+ * ray_mirror[r].  Results: `out` (x y z vx vy vz s, stride entries per component),
+ * out_status and the hit record; a walk that hits nothing ends as its path ended.   */
+#if defined(ARCUS_USE_GEOMETRY) && defined(ARCUS_USE_BOX)
+
+#define WALK_REALS 7
+#define REAL4 ARCUS_CAT(REAL, 4)
+#define WALK_POINT(q, k) (paths + ((size_t)(q) * (size_t)capacity + (size_t)(k)) * WALK_REALS)
+
+/* The state of path q at arc length s, linear between its net points; *j is a cursor
+ * that only moves forward (s grows along a walk). */
+ARCUS_INLINE void walk_state_at(__global const REAL* paths, int capacity, int q, int n, REAL s, int* j, REAL* out) {
+  while (*j + 2 < n && WALK_POINT(q, *j + 1)[6] <= s) ++*j;
+  __global const REAL* a = WALK_POINT(q, *j);
+  __global const REAL* b = WALK_POINT(q, min(*j + 1, n - 1));
+  const REAL t = b[6] > a[6] ? clamp((s - a[6]) / (b[6] - a[6]), RC(0), RC(1)) : RC(0);
+  for (int c = 0; c < 6; ++c) out[c] = a[c] + t * (b[c] - a[c]);
+  out[6] = s;
+}
+
+/* What a walked ray follows, per lane. */
+typedef struct walk_lane {
+  int a, b, mirror, points; /* points: of the walked path */
+  int ja, jb;               /* cursors (interpolated paths) */
+  REAL end;                 /* interpolated: where the shorter path ends */
+} walk_lane;
+
+/* Point k of the lane's walked path. */
+ARCUS_INLINE void walk_point(__global const REAL* paths, int capacity, __global const int* counts, walk_lane* w, int k,
+                             const REAL plane[4], REAL* out) {
+  if (w->b < 0) {
+    __global const REAL* p = WALK_POINT(w->a, k);
+    for (int c = 0; c < WALK_REALS; ++c) out[c] = p[c];
+  } else {
+    const REAL s = k + 1 < w->points ? WALK_POINT(w->a, k)[6] : w->end;
+    REAL pa[WALK_REALS], pb[WALK_REALS];
+    walk_state_at(paths, capacity, w->a, counts[w->a], s, &w->ja, pa);
+    walk_state_at(paths, capacity, w->b, counts[w->b], s, &w->jb, pb);
+    for (int c = 0; c < 6; ++c) out[c] = RC(0.5) * (pa[c] + pb[c]);
+    out[6] = s;
+  }
+  if (w->mirror) {
+    const REAL dx = plane[0] * out[0] + plane[1] * out[1] + plane[2] * out[2] - plane[3];
+    const REAL dv = plane[0] * out[3] + plane[1] * out[4] + plane[2] * out[5];
+    for (int c = 0; c < 3; ++c) {
+      out[c] -= RC(2) * dx * plane[c];
+      out[3 + c] -= RC(2) * dv * plane[c];
+    }
+  }
+}
+
+/* Point k of every lane's walked path into a lane group (lanes past their path keep
+ * what they hold). */
+ARCUS_INLINE void walk_load(__global const REAL* paths, int capacity, __global const int* counts, walk_lane* w, int k,
+                            const REAL plane[4], ray6* y, REALV* s) {
+  REAL c[WALK_REALS][ARCUS_LANES];
+  VSTORE(y->x, 0, c[0]);
+  VSTORE(y->y, 0, c[1]);
+  VSTORE(y->z, 0, c[2]);
+  VSTORE(y->vx, 0, c[3]);
+  VSTORE(y->vy, 0, c[4]);
+  VSTORE(y->vz, 0, c[5]);
+  VSTORE(*s, 0, c[6]);
+  for (int l = 0; l < ARCUS_LANES; ++l) {
+    if (k >= w[l].points) continue;
+    REAL p[WALK_REALS];
+    walk_point(paths, capacity, counts, &w[l], k, plane, p);
+    for (int i = 0; i < WALK_REALS; ++i) c[i][l] = p[i];
+  }
+  y->x = VLOAD(0, c[0]);
+  y->y = VLOAD(0, c[1]);
+  y->z = VLOAD(0, c[2]);
+  y->vx = VLOAD(0, c[3]);
+  y->vy = VLOAD(0, c[4]);
+  y->vz = VLOAD(0, c[5]);
+  *s = VLOAD(0, c[6]);
+}
+
+__kernel void arcus_walk(__global const REAL* paths, const int capacity, __global const int* counts,
+                         __global const int* end_status, __global const int* rays, const int ray_count,
+                         const REAL4 plane4, __global const REAL* wavelengths, __global REAL* out,
+                         __global int* out_status, const field_desc field, __global const REAL* field_data,
+                         const advance_desc job GEOMETRY_PARAMS) {
+  const size_t first_vector = get_global_id(0) * ARCUS_GROUPS;
+  const size_t stride = (size_t)job.stride;
+  const REAL plane[4] = {plane4.x, plane4.y, plane4.z, plane4.w};
+#ifdef ARCUS_USE_DISPERSION
+  medium med[ARCUS_GROUPS];
+  FOR_GROUPS(g) {
+    med[g].f = &field;
+    med[g].data = field_data;
+    med[g].refractivity = ciddor_refractivity(VLOAD(first_vector + g, wavelengths));
+  }
+#else
+  medium med[1];
+  med[0].f = &field;
+  med[0].data = field_data;
+#endif
+  walk_lane lanes[ARCUS_GROUPS][ARCUS_LANES];
+  ray6 y[ARCUS_GROUPS];
+  REALV s[ARCUS_GROUPS];
+  IDXV count[ARCUS_GROUPS], status[ARCUS_GROUPS];
+  hit_state hs[ARCUS_GROUPS];
+  int longest = 0;
+  FOR_GROUPS(g) {
+    const size_t v = first_vector + g;
+    IDX cs[ARCUS_LANES], es[ARCUS_LANES];
+    for (int l = 0; l < ARCUS_LANES; ++l) {
+      const size_t r = v * ARCUS_LANES + l;
+      walk_lane* w = &lanes[g][l];
+      w->ja = w->jb = 0;
+      w->end = RC(0);
+      if (r >= (size_t)ray_count) { /* padding: no path */
+        w->a = 0, w->b = -1, w->mirror = 0, w->points = 0;
+        cs[l] = 0;
+        es[l] = ARCUS_STATUS_INVALID_INPUT;
+        continue;
+      }
+      w->a = rays[r];
+      w->b = rays[r + stride];
+      w->mirror = rays[r + 2 * stride];
+      const int na = counts[w->a];
+      es[l] = end_status[w->a];
+      w->points = na;
+      if (w->b >= 0 && na >= 2 && counts[w->b] >= 2) {
+        const int nb = counts[w->b];
+        const REAL end_a = WALK_POINT(w->a, na - 1)[6], end_b = WALK_POINT(w->b, nb - 1)[6];
+        w->end = fmin(end_a, end_b);
+        if (end_b < end_a) es[l] = end_status[w->b];
+        int m = 0;
+        while (m < na && WALK_POINT(w->a, m)[6] < w->end) ++m;
+        w->points = m + 1; /* a's points short of the end, and the end */
+      } else {
+        w->b = -1; /* a path of fewer than two points has nothing to interpolate */
+      }
+      cs[l] = w->points;
+      longest = max(longest, w->points);
+    }
+    count[g] = VLOAD(0, cs);
+    /* A path of one point (or none) has no chord: it ends as it was recorded. */
+    status[g] = SEL(VLOAD(0, es), (IDXV)ARCUS_STATUS_ACTIVE, count[g] > (IDXV)1);
+    y[g].x = y[g].y = y[g].z = y[g].vx = y[g].vy = y[g].vz = (REALV)RC(0);
+    s[g] = (REALV)RC(0);
+    walk_load(paths, capacity, counts, lanes[g], 0, plane, &y[g], &s[g]);
+    hs[g].kind = (IDXV)ARCUS_HIT_NONE;
+    hs[g].index = (IDXV)-1;
+    hs[g].tests = 0;
+    hs[g].step = (IDXV)-1;
+    hs[g].predict = predictions ? VLOAD_I(v, predictions) : (IDXV)-1;
+    hs[g].lo[0] = hs[g].hi[0] = y[g].x;
+    hs[g].lo[1] = hs[g].hi[1] = y[g].y;
+    hs[g].lo[2] = hs[g].hi[2] = y[g].z;
+  }
+  ray6 zero; /* no Kahan compensation: recorded points are exact states */
+  zero.x = zero.y = zero.z = zero.vx = zero.vy = zero.vz = (REALV)RC(0);
+  for (int k = 0; k + 1 < longest; ++k) {
+    FOR_GROUPS(g) {
+      const MASKV moved = (status[g] == (IDXV)ARCUS_STATUS_ACTIVE) & ((IDXV)(k + 1) < count[g]);
+      if (!ANY(moved)) continue;
+      ray6 y1 = y[g], comp1 = zero;
+      REALV s1 = s[g];
+      walk_load(paths, capacity, counts, lanes[g], k + 1, plane, &y1, &s1);
+      geometry_step(MED(g), &job, &geo, nodes, tris, shapes, y[g], zero, s[g], &y1, &comp1, &s1, (IDXV)(k + 1), moved,
+                    moved & ((IDXV)(k + 2) >= count[g]), &hs[g], &status[g]);
+      /* Lanes that moved stand at the chord's end now, or on the surface they hit. */
+      const MASKV advanced = moved & (status[g] != (IDXV)ARCUS_STATUS_RETRY);
+      y[g] = ray_select(y[g], y1, advanced);
+      s[g] = SEL(s[g], s1, advanced);
+    }
+  }
+  FOR_GROUPS(g) {
+    const size_t v = first_vector + g;
+    /* Walked to the end without a hit: the path's own ending. */
+    IDX es[ARCUS_LANES];
+    for (int l = 0; l < ARCUS_LANES; ++l) {
+      const size_t r = v * ARCUS_LANES + l;
+      const walk_lane* w = &lanes[g][l];
+      es[l] = r >= (size_t)ray_count ? ARCUS_STATUS_INVALID_INPUT
+              : w->b >= 0 && WALK_POINT(w->b, counts[w->b] - 1)[6] < WALK_POINT(w->a, counts[w->a] - 1)[6]
+                  ? end_status[w->b]
+                  : end_status[w->a];
+    }
+    status[g] = SEL(status[g], VLOAD(0, es), status[g] == (IDXV)ARCUS_STATUS_ACTIVE);
+    VSTORE(y[g].x, v, out);
+    VSTORE(y[g].y, v, out + stride);
+    VSTORE(y[g].z, v, out + 2 * stride);
+    VSTORE(y[g].vx, v, out + 3 * stride);
+    VSTORE(y[g].vy, v, out + 4 * stride);
+    VSTORE(y[g].vz, v, out + 5 * stride);
+    VSTORE(s[g], v, out + 6 * stride);
+    VSTORE_I(status[g], v, out_status);
+    VSTORE_I(hs[g].kind, v, HIT_INT(ARCUS_HIT_KIND));
+    VSTORE_I(hs[g].index, v, HIT_INT(ARCUS_HIT_INDEX));
+    VSTORE_I(hs[g].tests, v, HIT_INT(ARCUS_HIT_TESTS));
+    VSTORE_I(hs[g].predict, v, HIT_INT(ARCUS_HIT_PREDICT));
+    VSTORE_I(hs[g].step, v, HIT_INT(ARCUS_HIT_STEP));
+  }
+}
+
+#endif
