@@ -1,6 +1,7 @@
 #include "core/buffer.h"
 
 #include <algorithm>
+#include <cstring>
 
 #include "core/error.h"
 #include "core/format.h"
@@ -28,9 +29,16 @@ DeviceBuffer::DeviceBuffer(arcus_context_t* ctx, size_t bytes, const std::string
     : runtime_(ctx->runtime), account_(ctx->device_bytes), bytes_(bytes) {
   check_device_allocation(ctx, static_cast<double>(bytes), static_cast<double>(bytes), what);
   cl_int err = CL_SUCCESS;
-  // OpenCL refuses empty buffers; a tiny one stands in for "no data".
+  // OpenCL refuses empty buffers; a tiny one stands in for "no data".  The copy is read
+  // over the whole (padded) size, so a short source goes through a padded copy.
+  constexpr size_t kSmallest = 8;
+  unsigned char padded[kSmallest] = {};
+  if (host && bytes < kSmallest) {
+    std::memcpy(padded, host, bytes);
+    host = padded;
+  }
   mem_ = ClMem(clCreateBuffer(runtime_->context(), CL_MEM_READ_WRITE | (host ? CL_MEM_COPY_HOST_PTR : 0),
-                              std::max<size_t>(bytes, 8), const_cast<void*>(host), &err));
+                              std::max<size_t>(bytes, kSmallest), const_cast<void*>(host), &err));
   if (err == CL_MEM_OBJECT_ALLOCATION_FAILURE || err == CL_OUT_OF_HOST_MEMORY || err == CL_OUT_OF_RESOURCES ||
       err == CL_INVALID_BUFFER_SIZE)
     fail(ARCUS_ERROR_OUT_OF_MEMORY, what + ": the device could not allocate " + gib(static_cast<double>(bytes)) +
