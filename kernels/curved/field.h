@@ -35,8 +35,10 @@
  *   Luneburg:   vec = centre, inv_radius2     fish-eye:   n0, vec = centre, inv_radius2
  *   atmosphere: refractivity = (n−1)·T/p [K/Pa], earth_radius (of the sphere),
  *               geopotential_radius (US Standard Atmosphere 1976's r0), count = segments,
- *               layer = the thinnest segment's thickness and layers_top = the height
- *               of the last break (geometric metres): see field_step_cap
+ *               layer = the thinnest segment's thickness below inversions_top (the
+ *               highest inversion's top; 0 without inversions), layer_above = the
+ *               thinnest above it, layers_top = the height of the last break
+ *               (geometric metres): see field_step_cap
  *   grid:       origin, inv_spacing, dims                                           */
 #define ARCUS_DECLARE_FIELD_DESC(NAME, R, I) \
   typedef struct NAME {                      \
@@ -46,6 +48,8 @@
     R earth_radius;                          \
     R geopotential_radius;                   \
     R layer;                                 \
+    R layer_above;                           \
+    R inversions_top;                        \
     R layers_top;                            \
     R vec[3];                                \
     R origin[3];                             \
@@ -270,8 +274,11 @@ ARCUS_INLINE void field_eval(const medium* m, REALV x, REALV y, REALV z, REALV* 
  * every layer boundary, and a step whose stages all land outside a thin layer (an
  * inversion of a few metres) never sees it — the error estimate cannot either.  So,
  * below the top of the layers, no step may span more than half the thinnest layer in
- * height: every layer a ray crosses gets a stage inside.  A horizontal ray is not held
- * back.  Other fields: no limit here (the host caps lenses and grids). */
+ * height: every layer a ray crosses gets a stage inside.  Above the inversions only
+ * the standard atmosphere's thick layers remain: there a step spans at most half the
+ * thinnest of those, and never more than reaches half a thin layer into the
+ * inversions (a ray coming down into them is held back as it arrives).  A horizontal
+ * ray is not held back.  Other fields: no limit here (the host caps lenses, grids). */
 ARCUS_INLINE REALV field_step_cap(const medium* m, REALV x, REALV y, REALV z, REALV vx, REALV vy, REALV vz) {
   const field_desc* f = m->f;
   if (ARCUS_FIELD_KIND_OF(m) != ARCUS_KIND_ATMOSPHERE) return (REALV)INFINITY;
@@ -280,7 +287,9 @@ ARCUS_INLINE REALV field_step_cap(const medium* m, REALV x, REALV y, REALV z, RE
   /* |dh/ds|: the direction's vertical component (v = n·dr/ds, |v| = n). */
   REALV rise = f->spherical ? fabs(x * vx + y * vy + z * vz) / radius : fabs(vy);
   REALV rate = rise / sqrt(vx * vx + vy * vy + vz * vz);
-  REALV cap = RC(0.5) * f->layer / rate;
+  const REALV thin = RC(0.5) * f->layer;
+  const REALV above = fmin(RC(0.5) * f->layer_above, height - f->inversions_top + thin);
+  const REALV cap = SEL(thin, above, height > f->inversions_top) / rate;
   return SEL(cap, (REALV)INFINITY, height > f->layers_top);
 }
 

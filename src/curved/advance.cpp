@@ -135,6 +135,8 @@ To field_desc_as(const From& f) {
   t.earth_radius = f.earth_radius;
   t.geopotential_radius = f.geopotential_radius;
   t.layer = f.layer;
+  t.layer_above = f.layer_above;
+  t.inversions_top = f.inversions_top;
   t.layers_top = f.layers_top;
   for (int a = 0; a < 3; ++a) {
     t.vec[a] = f.vec[a];

@@ -204,9 +204,17 @@ FieldBuild atmosphere(const arcus_atmosphere_desc& desc) {
   // The thinnest layer in geometric height, and the height of the last break (above it
   // the air is isothermal and smooth): DP45's steps span at most half of it (field.h).
   auto geometric = [&](double H) { return R * H / (R - H); };
-  b.desc.layer = INFINITY;
-  for (size_t k = 0; k + 1 < breaks.size(); ++k)
-    b.desc.layer = std::min(b.desc.layer, geometric(breaks[k + 1]) - geometric(breaks[k]));
+  double inversions_top_H = 0;
+  for (const Layer& l : layers) inversions_top_H = std::max(inversions_top_H, l.top_H);
+  b.desc.inversions_top = geometric(inversions_top_H);
+  b.desc.layer = b.desc.layer_above = INFINITY;
+  for (size_t k = 0; k + 1 < breaks.size(); ++k) {
+    const double thickness = geometric(breaks[k + 1]) - geometric(breaks[k]);
+    double& thinnest = breaks[k + 1] <= inversions_top_H ? b.desc.layer : b.desc.layer_above;
+    thinnest = std::min(thinnest, thickness);
+  }
+  // Without inversions every layer is a standard one: the same limit everywhere.
+  if (!std::isfinite(b.desc.layer)) b.desc.layer = b.desc.layer_above;
   b.desc.layers_top = geometric(breaks.back());
   b.desc.refractivity = ciddor_refractivity(desc.wavelength);
   return b;
