@@ -169,11 +169,12 @@ int main(int argc, char** argv) {
     std::printf("  last frame: trace %.3f s, walk %.3f s, photons %.3f s, shading %.3f s, total %.3f s\n",
                 total.trace_seconds, total.walk_seconds, total.photon_seconds, total.shade_seconds,
                 total.total_seconds);
-    std::printf("  %.2f steps per ray, %.2f intersection tests per ray, %llu rays traced, %llu retried, "
-                "%llu shadow rays\n",
+    std::printf("  %.2f steps per ray, %.2f intersection tests per ray; rays traced %llu, mirrored %llu, "
+                "interpolated %llu, from the cache %llu (%.1f MB); %llu shadow rays\n",
                 double(total.steps) / total.pixels, double(total.tests) / total.pixels,
-                (unsigned long long)total.rays_traced, (unsigned long long)total.rays_retried,
-                (unsigned long long)total.shadow_rays);
+                (unsigned long long)total.rays_traced, (unsigned long long)total.rays_mirrored,
+                (unsigned long long)total.rays_interpolated, (unsigned long long)total.rays_cached,
+                total.cache_bytes / 1e6, (unsigned long long)total.shadow_rays);
     std::printf("  wrote %s%s%s\n", o.exr.c_str(), o.png.empty() ? "" : " and ", o.png.c_str());
   } catch (const Failure& e) {
     std::fprintf(stderr, "arcus_render: %s\n", e.what());

@@ -86,11 +86,10 @@ typedef struct arcus_render_stats {
   double shade_seconds;   /* shadow rays, sky, radiance estimates, the image */
   double total_seconds;
   uint64_t pixels;
-  uint64_t rays_traced;       /* paths integrated (primary rays, including retries) */
+  uint64_t rays_traced;       /* paths integrated (primary rays) */
   uint64_t rays_mirrored;     /* SYMMETRY */
   uint64_t rays_interpolated; /* UNDERSAMPLE */
   uint64_t rays_cached;       /* PATH_CACHE: paths reused from the last frame */
-  uint64_t rays_retried;      /* SMART_STEP: traced again after a failed proof */
   uint64_t steps;             /* integrator steps of primary rays */
   uint64_t tests;             /* intersection tests of primary rays */
   uint64_t shadow_rays;

@@ -102,9 +102,8 @@ ARCUS_INLINE void ray_store(ray6 r, __global REAL* p, size_t v, size_t stride) {
  * predicted hit steps of smart step selection (NULL: none). */
 #define GEOMETRY_PARAMS                                                                                         \
   , __global const bvh_node *nodes, __global const REAL *tris, __global const shape *shapes,                  \
-      const geometry_desc geo, __global int *hit_ints, __global REAL *hit_reals, __global const int *predictions
+      const geometry_desc geo, __global int *hit_ints, __global const int *predictions
 #define HIT_INT(c) (hit_ints + (c) * stride)
-#define HIT_REAL(c) (hit_reals + (c) * stride)
 #else
 #define GEOMETRY_PARAMS
 #endif
@@ -144,6 +143,7 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
 #endif
 #ifdef ARCUS_USE_GEOMETRY
   hit_state hs[ARCUS_GROUPS];
+  smart_chunk chunk[ARCUS_GROUPS];
 #endif
 
   if (job.first_slice) {
@@ -198,9 +198,6 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
       hs[g].tests = 0;
       hs[g].step = (IDXV)-1;
       hs[g].predict = predictions ? VLOAD_I(v, predictions) : (IDXV)-1;
-      hs[g].lo[0] = hs[g].hi[0] = x; /* the skipped chords' box starts at the origin */
-      hs[g].lo[1] = hs[g].hi[1] = yy;
-      hs[g].lo[2] = hs[g].hi[2] = z;
 #endif
     }
   } else {
@@ -230,13 +227,12 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
       hs[g].tests = VLOAD_I(v, HIT_INT(ARCUS_HIT_TESTS));
       hs[g].predict = VLOAD_I(v, HIT_INT(ARCUS_HIT_PREDICT));
       hs[g].step = VLOAD_I(v, HIT_INT(ARCUS_HIT_STEP));
-      for (int a = 0; a < 3; ++a) {
-        hs[g].lo[a] = VLOAD(v, HIT_REAL(ARCUS_HIT_SKIPPED_LO + a));
-        hs[g].hi[a] = VLOAD(v, HIT_REAL(ARCUS_HIT_SKIPPED_HI + a));
-      }
 #endif
     }
   }
+#ifdef ARCUS_USE_GEOMETRY
+  FOR_GROUPS(g) smart_chunk_start(&chunk[g], y[g], s[g]); /* skipped steps since this slice began */
+#endif
 
 #ifdef ARCUS_METHOD_DP45
   /* FSAL: the first stage is the derivative at the state (recomputed each slice: the
@@ -273,7 +269,8 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
 #ifdef ARCUS_USE_GEOMETRY
       if (ANY(accepted[g]))
         geometry_step(MED(g), &job, &geo, nodes, tris, shapes, y_old[g], comp_old[g], s_old[g], &y[g], &comp[g], &s[g],
-                      steps[g], accepted[g], accepted[g] & (status[g] != (IDXV)ARCUS_STATUS_ACTIVE), &hs[g], &status[g]);
+                      steps[g], accepted[g], accepted[g] & (status[g] != (IDXV)ARCUS_STATUS_ACTIVE), 0, &hs[g],
+                      &chunk[g], &status[g]);
 #endif
       RECORD(g, accepted[g]);
     }
@@ -317,7 +314,7 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
       if (ANY(active))
         geometry_step(MED(g), &job, &geo, nodes, tris, shapes, y[g], comp[g], s[g], &y_new[g], &comp_new[g], &s_new,
                       steps[g] + ONE_IF(active), active, active & ((status[g] != (IDXV)ARCUS_STATUS_ACTIVE) | last_step),
-                      &hs[g], &status[g]);
+                      0, &hs[g], &chunk[g], &status[g]);
 #endif
       y[g] = ray_select(y[g], y_new[g], active);
       comp[g] = ray_select(comp[g], comp_new[g], active);
@@ -363,6 +360,16 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
   }
 #endif
 
+#ifdef ARCUS_USE_GEOMETRY
+  /* Smart step selection's chunks live in private memory: the steps still held are
+   * proved empty (or tested) before the slice ends. */
+  FOR_GROUPS(g) {
+    const MASKV open = status[g] == (IDXV)ARCUS_STATUS_ACTIVE;
+    if (ANY(open))
+      geometry_step(MED(g), &job, &geo, nodes, tris, shapes, y[g], comp[g], s[g], &y[g], &comp[g], &s[g], steps[g], open,
+                    open, 1, &hs[g], &chunk[g], &status[g]);
+  }
+#endif
   /* The state goes back to the device buffer: the next slice resumes from it, and after
    * the last one the host reads the results from it. */
   FOR_GROUPS(g) {
@@ -387,10 +394,6 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
     VSTORE_I(hs[g].tests, v, HIT_INT(ARCUS_HIT_TESTS));
     VSTORE_I(hs[g].predict, v, HIT_INT(ARCUS_HIT_PREDICT));
     VSTORE_I(hs[g].step, v, HIT_INT(ARCUS_HIT_STEP));
-    for (int a = 0; a < 3; ++a) {
-      VSTORE(hs[g].lo[a], v, HIT_REAL(ARCUS_HIT_SKIPPED_LO + a));
-      VSTORE(hs[g].hi[a], v, HIT_REAL(ARCUS_HIT_SKIPPED_HI + a));
-    }
 #endif
   }
 }

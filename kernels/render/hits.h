@@ -6,27 +6,50 @@
  * hit primitive's surface: a hit lies on the path, not on its chord.
  *
  * Smart step selection (thesis §4.3.3): a ray given a predicted hit step n (from its
- * neighbours or from the previous frame) skips the tests of its steps before n − 1 and
- * keeps only the box of the chords skipped since the last proof.  Every
- * ARCUS_SMART_CHUNK skipped steps, when it reaches step n − 1, and when it ends, one
- * test proves that box empty of primitives, so the skipped steps cannot have hit
- * anything: the hit found from there on is exactly the exhaustive scan's.  (One box for
- * all skipped steps would be too coarse: every path starts at the camera, so its box
- * spans everything between the camera and the path's end.)  If a proof fails the ray
- * stops as RETRY and the host traces it again without a prediction.  (The thesis tests n, then n − 1, then n + 1 and takes the first hit
- * found; along a path computed step by step n − 1 comes first, and the proof makes
- * the order irrelevant to the result.)
+ * neighbours or from the previous frame) skips the tests of its steps before n.  It
+ * keeps the skipped steps' net points (whole states) in a chunk of at most
+ * ARCUS_SMART_CHUNK, and when the chunk is full, when step n comes, when the ray ends
+ * and when the slice ends, one test proves the chunk empty: no primitive comes
+ * within the capsule around the chord from the chunk's first to its last point whose
+ * radius is the farthest any point of the chunk strays from that chord.  If the proof
+ * fails, its halves are proved in turn, down to single chords, which are intersected.  Either way no step
+ * goes untested, so the hit found is exactly the exhaustive scan's, and its end is
+ * moved onto the path from the same state with the same step.  (The thesis tests n,
+ * then n − 1, n + 1 and takes the first hit found; here steps up to n − 1 are proved
+ * empty or scanned first, so the hit is the first along the path whatever the order.)  A box
+ * around the chunk would be a weaker proof: every path starts at the camera, so the
+ * box of a path's first steps spans all the scene between the camera and them.
  *
  * Tests count one per chord query and one per proof: the thesis' t_intersection.   */
 #ifdef ARCUS_USE_GEOMETRY
 
-#define ARCUS_SMART_CHUNK 8 /* skipped steps per emptiness proof */
+#define ARCUS_SMART_CHUNK 16 /* skipped steps per emptiness proof at most */
 
 /* A ray's hit record while it is traced (render_desc.h has the device layout). */
 typedef struct hit_state {
   IDXV kind, index, tests, predict, step;
-  REALV lo[3], hi[3]; /* box of the skipped chords */
 } hit_state;
+
+#define ARCUS_SMART_CHUNK 16 /* skipped steps per emptiness proof at most */
+#define ARCUS_STATE_REALS 7 /* x y z vx vy vz s */
+
+/* The skipped steps' net points of each lane of a group, since the last proof. */
+typedef struct smart_chunk {
+  REAL p[ARCUS_SMART_CHUNK + 1][ARCUS_STATE_REALS][ARCUS_LANES];
+  int points[ARCUS_LANES]; /* points held: 1 (the start) .. ARCUS_SMART_CHUNK + 1 */
+} smart_chunk;
+
+/* Starts every lane's chunk at its current state. */
+ARCUS_INLINE void smart_chunk_start(smart_chunk* c, ray6 y, REALV s) {
+  VSTORE(y.x, 0, c->p[0][0]);
+  VSTORE(y.y, 0, c->p[0][1]);
+  VSTORE(y.z, 0, c->p[0][2]);
+  VSTORE(y.vx, 0, c->p[0][3]);
+  VSTORE(y.vy, 0, c->p[0][4]);
+  VSTORE(y.vz, 0, c->p[0][5]);
+  VSTORE(s, 0, c->p[0][6]);
+  for (int l = 0; l < ARCUS_LANES; ++l) c->points[l] = 1;
+}
 
 /* The closest shape hit by the chord o + t·d, t in [0, *t_best): its index, or -1;
  * *t_best becomes its t.  Spheres by the closest-approach form of the quadratic, which
@@ -64,61 +87,235 @@ ARCUS_INLINE int shapes_segment(__global const shape* shapes, int count, const R
   return best;
 }
 
-/* Whether some shape may reach into the box [lo, hi] (conservative: a sphere by its
- * distance from the box, a disc by its own bounding box). */
-ARCUS_INLINE int shapes_overlap_box(__global const shape* shapes, int count, const REAL lo[3], const REAL hi[3]) {
-  for (int i = 0; i < count; ++i) {
-    __global const shape* sh = &shapes[i];
-    if (sh->kind == ARCUS_SHAPE_SPHERE) {
-      REAL dist2 = RC(0);
-      for (int a = 0; a < 3; ++a) {
-        const REAL c = sh->center[a], gap = fmax(lo[a] - c, c - hi[a]);
-        if (gap > RC(0)) dist2 += gap * gap;
-      }
-      if (dist2 <= sh->radius * sh->radius) return 1;
-    } else {
-      int overlap = 1;
-      for (int a = 0; a < 3; ++a) {
-        const REAL n = sh->normal[a];
-        const REAL extent = sh->radius * sqrt(fmax(RC(0), RC(1) - n * n));
-        overlap &= (sh->center[a] - extent <= hi[a]) & (sh->center[a] + extent >= lo[a]);
-      }
-      if (overlap) return 1;
+/* Whether the segment a + t·d, t in [0, 1], meets the box [lo − r, hi + r]. */
+ARCUS_INLINE int capsule_meets_box(const REAL a[3], const REAL d[3], REAL r, const REAL* lo, const REAL* hi) {
+  REAL t0 = RC(0), t1 = RC(1);
+  for (int k = 0; k < 3; ++k) {
+    const REAL l = lo[k] - r, h = hi[k] + r;
+    if (d[k] == RC(0)) {
+      if (a[k] < l || a[k] > h) return 0;
+      continue;
     }
+    const REAL inv = RC(1) / d[k];
+    REAL u0 = (l - a[k]) * inv, u1 = (h - a[k]) * inv;
+    if (u0 > u1) {
+      const REAL t = u0;
+      u0 = u1;
+      u1 = t;
+    }
+    t0 = fmax(t0, u0);
+    t1 = fmin(t1, u1 + fabs(u1) * ARCUS_BVH_SLACK);
+    if (t0 > t1) return 0;
+  }
+  return 1;
+}
+
+/* Whether any primitive may come within r of the segment a + t·d, t in [0, 1]
+ * (conservative: triangles by their boxes, grown by r). */
+ARCUS_INLINE int geometry_meets_capsule(const geometry_desc* geo, __global const bvh_node* nodes,
+                                        __global const REAL* tris, __global const shape* shapes, const REAL a[3],
+                                        const REAL d[3], REAL r) {
+  if (geo->triangle_count > 0 && nodes[0].first >= 0) {
+    int stack[ARCUS_BVH_MAX_DEPTH];
+    int sp = 0;
+    REAL lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) lo[k] = nodes[0].lo[k], hi[k] = nodes[0].hi[k];
+    if (capsule_meets_box(a, d, r, lo, hi)) stack[sp++] = 0;
+    while (sp > 0) {
+      __global const bvh_node* n = &nodes[stack[--sp]];
+      if (n->count > 0) {
+        for (int t = n->first; t < n->first + n->count; ++t) {
+          __global const REAL* v = tris + 9 * (size_t)t;
+          for (int k = 0; k < 3; ++k) {
+            lo[k] = fmin(fmin(v[k], v[3 + k]), v[6 + k]);
+            hi[k] = fmax(fmax(v[k], v[3 + k]), v[6 + k]);
+          }
+          if (capsule_meets_box(a, d, r, lo, hi)) return 1;
+        }
+        continue;
+      }
+      for (int c = 0; c < 2; ++c) {
+        __global const bvh_node* child = &nodes[n->first + c];
+        for (int k = 0; k < 3; ++k) lo[k] = child->lo[k], hi[k] = child->hi[k];
+        if (capsule_meets_box(a, d, r, lo, hi)) stack[sp++] = n->first + c;
+      }
+    }
+  }
+  for (int i = 0; i < geo->shape_count; ++i) {
+    __global const shape* sh = &shapes[i];
+    REAL lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) {
+      const REAL n = sh->normal[k];
+      const REAL extent = sh->kind == ARCUS_SHAPE_SPHERE ? sh->radius : sh->radius * sqrt(fmax(RC(0), RC(1) - n * n));
+      lo[k] = sh->center[k] - extent;
+      hi[k] = sh->center[k] + extent;
+    }
+    if (!capsule_meets_box(a, d, r, lo, hi)) continue;
+    if (sh->kind != ARCUS_SHAPE_SPHERE) return 1;
+    /* A sphere: the segment's closest approach to its centre. */
+    const REAL dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    const REAL ac[3] = {sh->center[0] - a[0], sh->center[1] - a[1], sh->center[2] - a[2]};
+    const REAL t = dd > RC(0) ? clamp((ac[0] * d[0] + ac[1] * d[1] + ac[2] * d[2]) / dd, RC(0), RC(1)) : RC(0);
+    const REAL q[3] = {ac[0] - t * d[0], ac[1] - t * d[1], ac[2] - t * d[2]};
+    const REAL reach = sh->radius + r;
+    if (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] <= reach * reach * (RC(1) + RC(16) * ARCUS_BVH_SLACK)) return 1;
   }
   return 0;
 }
 
-/* Whether any primitive may lie in the box: the smart-step proof. */
-ARCUS_INLINE int geometry_overlaps_box(const geometry_desc* geo, __global const bvh_node* nodes,
-                                       __global const REAL* tris, __global const shape* shapes, const REAL lo[3],
-                                       const REAL hi[3]) {
-  if (geo->triangle_count > 0 && bvh_box_overlaps(nodes, tris, lo, hi)) return 1;
-  return shapes_overlap_box(shapes, geo->shape_count, lo, hi);
+/* The closest primitive the chord o + t·d, t in [0, 1], hits: its kind (ARCUS_HIT_*),
+ * *index and *t. */
+ARCUS_INLINE int chord_hit(const geometry_desc* geo, __global const bvh_node* nodes, __global const REAL* tris,
+                           __global const shape* shapes, const REAL o[3], const REAL d[3], int* index, REAL* t) {
+  REAL best = RC(1);
+  int kind = ARCUS_HIT_NONE;
+  if (geo->triangle_count > 0) {
+    REAL th, u, v;
+    int visits = 0;
+    const int slot = bvh_segment_closest(nodes, tris, o[0], o[1], o[2], d[0], d[1], d[2], best, &th, &u, &v, &visits);
+    if (slot >= 0) {
+      best = th;
+      kind = ARCUS_HIT_TRIANGLE;
+      *index = slot;
+    }
+  }
+  const int si = shapes_segment(shapes, geo->shape_count, o, d, &best);
+  if (si >= 0) {
+    kind = ARCUS_HIT_SHAPE;
+    *index = si;
+  }
+  *t = best;
+  return kind;
+}
+
+/* Whether chunk points i..j of lane l may come near a primitive: one test of the
+ * capsule around the chord from point i to point j, as wide as the points between
+ * stray from it. */
+ARCUS_INLINE int smart_span_meets(const smart_chunk* c, int l, int i, int j, const geometry_desc* geo,
+                                  __global const bvh_node* nodes, __global const REAL* tris,
+                                  __global const shape* shapes) {
+  const REAL a[3] = {c->p[i][0][l], c->p[i][1][l], c->p[i][2][l]};
+  const REAL d[3] = {c->p[j][0][l] - a[0], c->p[j][1][l] - a[1], c->p[j][2][l] - a[2]};
+  const REAL dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  REAL r2 = RC(0);
+  for (int k = i + 1; k < j; ++k) {
+    const REAL ap[3] = {c->p[k][0][l] - a[0], c->p[k][1][l] - a[1], c->p[k][2][l] - a[2]};
+    const REAL u = dd > RC(0) ? clamp((ap[0] * d[0] + ap[1] * d[1] + ap[2] * d[2]) / dd, RC(0), RC(1)) : RC(0);
+    const REAL q[3] = {ap[0] - u * d[0], ap[1] - u * d[1], ap[2] - u * d[2]};
+    r2 = fmax(r2, q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+  }
+  /* Grown by rounding: the points are exact, the distances computed from them not. */
+  const REAL scale = fmax(fmax(fabs(a[0]), fabs(a[1])), fmax(fabs(a[2]), sqrt(dd)));
+  const REAL r = sqrt(r2) * (RC(1) + RC(64) * ARCUS_BVH_SLACK) + RC(64) * ARCUS_BVH_SLACK * scale;
+  return geometry_meets_capsule(geo, nodes, tris, shapes, a, d, r);
+}
+
+/* The smart-step proof of lane l's chunk: one capsule test for the whole chunk; where
+ * a capsule meets a primitive, its two halves are tested in turn, down to single
+ * chords, which are intersected.  Spans are visited along the path, so the first chord
+ * that hits is the first along the path.  Returns it (its start is chunk point
+ * `return`), or -1; the chunk then restarts at its last point. */
+ARCUS_INLINE int smart_chunk_close(smart_chunk* c, int l, const geometry_desc* geo, __global const bvh_node* nodes,
+                                   __global const REAL* tris, __global const shape* shapes, IDX* tests, int* kind,
+                                   int* index, REAL* t) {
+  const int m = c->points[l] - 1; /* chords held */
+  if (m <= 0) return -1;
+  int lo[ARCUS_SMART_CHUNK], hi[ARCUS_SMART_CHUNK]; /* spans still to prove, the next on top */
+  int sp = 0, hit_chord = -1;
+  lo[sp] = 0;
+  hi[sp++] = m;
+  while (sp > 0 && hit_chord < 0) {
+    const int i = lo[--sp], j = hi[sp];
+    *tests += 1;
+    if (j - i == 1) {
+      const REAL o[3] = {c->p[i][0][l], c->p[i][1][l], c->p[i][2][l]};
+      const REAL e[3] = {c->p[j][0][l] - o[0], c->p[j][1][l] - o[1], c->p[j][2][l] - o[2]};
+      *kind = chord_hit(geo, nodes, tris, shapes, o, e, index, t);
+      if (*kind != ARCUS_HIT_NONE) hit_chord = i;
+      continue;
+    }
+    if (!smart_span_meets(c, l, i, j, geo, nodes, tris, shapes)) continue;
+    const int mid = (i + j) / 2;
+    lo[sp] = mid; /* the far half waits under the near one */
+    hi[sp++] = j;
+    lo[sp] = i;
+    hi[sp++] = mid;
+  }
+  if (hit_chord < 0) {
+    for (int k = 0; k < ARCUS_STATE_REALS; ++k) c->p[0][k][l] = c->p[m][k][l];
+    c->points[l] = 1;
+  }
+  return hit_chord;
+}
+
+/* The quadric (crossing.h) of a hit primitive, signed so that `from` lies on its
+ * negative side. */
+ARCUS_INLINE void hit_surface(int kind, int index, __global const REAL* tris, __global const shape* shapes,
+                              const REAL from[3], REAL q[8]) {
+  REAL qa = RC(0), c[3], n[3] = {RC(0), RC(0), RC(0)}, qd = RC(0);
+  if (kind == ARCUS_HIT_TRIANGLE) {
+    __global const REAL* tri = tris + 9 * (size_t)index;
+    const REAL e1[3] = {tri[3] - tri[0], tri[4] - tri[1], tri[5] - tri[2]};
+    const REAL e2[3] = {tri[6] - tri[0], tri[7] - tri[1], tri[8] - tri[2]};
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    const REAL len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int k = 0; k < 3; ++k) {
+      n[k] /= len;
+      c[k] = tri[k];
+    }
+  } else {
+    __global const shape* sh = &shapes[index];
+    for (int k = 0; k < 3; ++k) c[k] = sh->center[k];
+    if (sh->kind == ARCUS_SHAPE_SPHERE) {
+      qa = RC(0.5) / sh->radius;
+      qd = RC(0.5) * sh->radius;
+    } else {
+      for (int k = 0; k < 3; ++k) n[k] = sh->normal[k];
+    }
+  }
+  const REAL oc[3] = {from[0] - c[0], from[1] - c[1], from[2] - c[2]};
+  const REAL g0 = qa * (oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2]) + n[0] * oc[0] + n[1] * oc[1] + n[2] * oc[2] - qd;
+  const REAL sign = g0 > RC(0) ? RC(-1) : RC(1);
+  q[0] = sign * qa;
+  q[1] = c[0];
+  q[2] = c[1];
+  q[3] = c[2];
+  q[4] = sign * n[0];
+  q[5] = sign * n[1];
+  q[6] = sign * n[2];
+  q[7] = sign * qd;
 }
 
 /* Lanes in `moved` took the step y0 → *y1 (from arc s0; `steps` already counts it);
- * `ending`: the lanes stop after it anyway (left the box, reached the length).
- * Tests the step's chord, stops the lanes that hit (HIT, end moved onto the surface)
- * and those whose skipped steps cannot be proved empty (RETRY). */
+ * `ending`: the lanes stop after it anyway (left the box, reached the length).  Tests
+ * the step's chord (or keeps it in the chunk), stops the lanes that hit (HIT, the end
+ * moved onto the hit surface from the hit chord's start state).  With `flush` (the
+ * slice ends) no step was taken: the lanes in `moved` stand at *y1, and their open
+ * chunks are closed (the chunks live in private memory, not between slices). */
 ARCUS_INLINE void geometry_step(const medium* m, const advance_desc* job, const geometry_desc* geo,
                                 __global const bvh_node* nodes, __global const REAL* tris,
                                 __global const shape* shapes, ray6 y0, ray6 comp0, REALV s0, ray6* y1, ray6* comp1,
-                                REALV* s1, IDXV steps, MASKV moved, MASKV ending, hit_state* hs, IDXV* status) {
-  REAL a0[3][ARCUS_LANES], a1[3][ARCUS_LANES], lo[3][ARCUS_LANES], hi[3][ARCUS_LANES];
-  REAL q[8][ARCUS_LANES]; /* the hit surface's quadric per lane (crossing.h) */
+                                REALV* s1, IDXV steps, MASKV moved, MASKV ending, int flush, hit_state* hs,
+                                smart_chunk* chunk, IDXV* status) {
+  REAL a0[ARCUS_STATE_REALS][ARCUS_LANES], a1[ARCUS_STATE_REALS][ARCUS_LANES];
+  REAL h0[ARCUS_STATE_REALS][ARCUS_LANES], h1[ARCUS_STATE_REALS][ARCUS_LANES]; /* the hit chord's ends */
+  REAL q[8][ARCUS_LANES];
   REAL t_hit[ARCUS_LANES];
   IDX k[ARCUS_LANES], mv[ARCUS_LANES], en[ARCUS_LANES], kind[ARCUS_LANES], index[ARCUS_LANES], tests[ARCUS_LANES],
-      predict[ARCUS_LANES], hstep[ARCUS_LANES], hit[ARCUS_LANES], retry[ARCUS_LANES];
-  VSTORE(y0.x, 0, a0[0]);
-  VSTORE(y0.y, 0, a0[1]);
-  VSTORE(y0.z, 0, a0[2]);
-  VSTORE(y1->x, 0, a1[0]);
-  VSTORE(y1->y, 0, a1[1]);
-  VSTORE(y1->z, 0, a1[2]);
-  for (int a = 0; a < 3; ++a) {
-    VSTORE(hs->lo[a], 0, lo[a]);
-    VSTORE(hs->hi[a], 0, hi[a]);
+      predict[ARCUS_LANES], hstep[ARCUS_LANES], hit[ARCUS_LANES], buffered[ARCUS_LANES];
+  const ray6 ys[2] = {y0, *y1};
+  const REALV ss[2] = {s0, *s1};
+  for (int e = 0; e < 2; ++e) {
+    REAL(*dst)[ARCUS_LANES] = e ? a1 : a0;
+    VSTORE(ys[e].x, 0, dst[0]);
+    VSTORE(ys[e].y, 0, dst[1]);
+    VSTORE(ys[e].z, 0, dst[2]);
+    VSTORE(ys[e].vx, 0, dst[3]);
+    VSTORE(ys[e].vy, 0, dst[4]);
+    VSTORE(ys[e].vz, 0, dst[5]);
+    VSTORE(ss[e], 0, dst[6]);
   }
   VSTORE_IDX(steps, 0, k);
   VSTORE_IDX((IDXV)moved, 0, mv);
@@ -131,114 +328,82 @@ ARCUS_INLINE void geometry_step(const medium* m, const advance_desc* job, const 
 
   for (int l = 0; l < ARCUS_LANES; ++l) {
     hit[l] = 0;
-    retry[l] = 0;
+    buffered[l] = 0;
     t_hit[l] = RC(1);
     for (int c = 0; c < 8; ++c) q[c][l] = RC(0);
-    if (!mv[l]) continue;
-    const IDX seg = k[l] - 1; /* this step's index along the path */
-    const REAL o[3] = {a0[0][l], a0[1][l], a0[2][l]};
-    const REAL d[3] = {a1[0][l] - o[0], a1[1][l] - o[1], a1[2][l] - o[2]};
-    const IDX predicted = predict[l];
-    if (predicted >= 0) {
-      if (seg < predicted - 1) {
-        /* Skipped: only its box is kept (the start point is in it already). */
-        for (int a = 0; a < 3; ++a) {
-          lo[a][l] = fmin(lo[a][l], a1[a][l]);
-          hi[a][l] = fmax(hi[a][l], a1[a][l]);
-        }
-        if (!en[l] && (seg + 1) % ARCUS_SMART_CHUNK != 0) continue;
-      }
-      /* A chunk is full, the tested range begins, or the ray ends: prove the chords
-       * skipped since the last proof empty. */
-      tests[l] += 1;
-      const REAL blo[3] = {lo[0][l], lo[1][l], lo[2][l]}, bhi[3] = {hi[0][l], hi[1][l], hi[2][l]};
-      if (geometry_overlaps_box(geo, nodes, tris, shapes, blo, bhi)) {
-        retry[l] = 1;
-        continue;
-      }
-      if (seg < predicted - 1) {
-        if (en[l]) continue; /* the ray ended within the skipped, now empty, steps */
-        for (int a = 0; a < 3; ++a) lo[a][l] = hi[a][l] = a1[a][l]; /* the next chunk starts here */
-        continue;
-      }
-      predict[l] = -1;
-    }
-    tests[l] += 1;
-    REAL best = RC(1);
+    if (!mv[l] || (flush && (predict[l] < 0 || chunk->points[l] < 2))) continue;
+    const IDX seg = k[l] - 1; /* this step's index along the path (flush: the last one) */
     int found_kind = ARCUS_HIT_NONE, found = -1;
-    if (geo->triangle_count > 0) {
-      REAL t, u, v;
-      int visits = 0;
-      const int slot = bvh_segment_closest(nodes, tris, o[0], o[1], o[2], d[0], d[1], d[2], best, &t, &u, &v, &visits);
-      if (slot >= 0) {
-        best = t;
-        found_kind = ARCUS_HIT_TRIANGLE;
-        found = slot;
+    REAL t = RC(1);
+    if (predict[l] >= 0) {
+      /* Skipping: keep the step's end in the chunk; close the chunk when it is full,
+       * before the tested range, when the ray ends, or when the slice does. */
+      if (!flush) {
+        const int at = chunk->points[l];
+        for (int c = 0; c < ARCUS_STATE_REALS; ++c) chunk->p[at][c][l] = a1[c][l];
+        chunk->points[l] = at + 1;
+      }
+      const int last_skipped = seg + 2 >= predict[l]; /* step n − 1 comes next: test it */
+      if (chunk->points[l] == ARCUS_SMART_CHUNK + 1 || last_skipped || en[l] || flush) {
+        int ci = -1;
+        const int chord = smart_chunk_close(chunk, l, geo, nodes, tris, shapes, &tests[l], &found_kind, &found, &t);
+        if (chord >= 0) {
+          ci = chord;
+          for (int c = 0; c < ARCUS_STATE_REALS; ++c) {
+            h0[c][l] = chunk->p[ci][c][l];
+            h1[c][l] = chunk->p[ci + 1][c][l];
+          }
+          buffered[l] = 1;
+          hstep[l] = seg - (chunk->points[l] - 2 - ci);
+        } else if (last_skipped) {
+          predict[l] = -1; /* every skipped step is proved empty: test from here on */
+        }
+      }
+      if (found_kind == ARCUS_HIT_NONE) continue;
+    } else {
+      tests[l] += 1;
+      const REAL o[3] = {a0[0][l], a0[1][l], a0[2][l]};
+      const REAL d[3] = {a1[0][l] - o[0], a1[1][l] - o[1], a1[2][l] - o[2]};
+      found_kind = chord_hit(geo, nodes, tris, shapes, o, d, &found, &t);
+      if (found_kind == ARCUS_HIT_NONE) continue;
+      hstep[l] = seg;
+      for (int c = 0; c < ARCUS_STATE_REALS; ++c) {
+        h0[c][l] = a0[c][l];
+        h1[c][l] = a1[c][l];
       }
     }
-    const int si = shapes_segment(shapes, geo->shape_count, o, d, &best);
-    if (si >= 0) {
-      found_kind = ARCUS_HIT_SHAPE;
-      found = si;
-    }
-    if (found_kind == ARCUS_HIT_NONE) continue;
     hit[l] = 1;
     kind[l] = found_kind;
     index[l] = found;
-    hstep[l] = seg;
-    t_hit[l] = best;
-    /* The surface for crossing.h: the triangle's or disc's plane, or the sphere. */
-    REAL qa = RC(0), c[3], n[3] = {RC(0), RC(0), RC(0)}, qd = RC(0);
-    if (found_kind == ARCUS_HIT_TRIANGLE) {
-      __global const REAL* tri = tris + 9 * (size_t)found;
-      const REAL e1[3] = {tri[3] - tri[0], tri[4] - tri[1], tri[5] - tri[2]};
-      const REAL e2[3] = {tri[6] - tri[0], tri[7] - tri[1], tri[8] - tri[2]};
-      n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-      n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-      n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-      const REAL len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      for (int a = 0; a < 3; ++a) {
-        n[a] /= len;
-        c[a] = tri[a];
-      }
-    } else {
-      __global const shape* sh = &shapes[found];
-      for (int a = 0; a < 3; ++a) c[a] = sh->center[a];
-      if (sh->kind == ARCUS_SHAPE_SPHERE) {
-        qa = RC(0.5) / sh->radius;
-        qd = RC(0.5) * sh->radius;
-      } else {
-        for (int a = 0; a < 3; ++a) n[a] = sh->normal[a];
-      }
-    }
-    /* The start on the negative side (crossing.h's convention). */
-    const REAL oc[3] = {o[0] - c[0], o[1] - c[1], o[2] - c[2]};
-    const REAL g0 = qa * (oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2]) + n[0] * oc[0] + n[1] * oc[1] +
-                    n[2] * oc[2] - qd;
-    const REAL sign = g0 > RC(0) ? RC(-1) : RC(1);
-    q[0][l] = sign * qa;
-    q[1][l] = c[0];
-    q[2][l] = c[1];
-    q[3][l] = c[2];
-    q[4][l] = sign * n[0];
-    q[5][l] = sign * n[1];
-    q[6][l] = sign * n[2];
-    q[7][l] = sign * qd;
+    t_hit[l] = t;
+    predict[l] = -1;
+    REAL ql[8];
+    const REAL from[3] = {h0[0][l], h0[1][l], h0[2][l]};
+    hit_surface(found_kind, found, tris, shapes, from, ql);
+    for (int c = 0; c < 8; ++c) q[c][l] = ql[c];
   }
 
-  for (int a = 0; a < 3; ++a) {
-    hs->lo[a] = VLOAD(0, lo[a]);
-    hs->hi[a] = VLOAD(0, hi[a]);
-  }
   hs->kind = VLOAD(0, kind);
   hs->index = VLOAD(0, index);
   hs->tests = VLOAD(0, tests);
   hs->predict = VLOAD(0, predict);
   hs->step = VLOAD(0, hstep);
   const MASKV hits = VLOAD(0, hit) != (IDXV)0;
-  const MASKV retries = VLOAD(0, retry) != (IDXV)0;
-  *status = SEL(*status, (IDXV)ARCUS_STATUS_RETRY, retries);
   if (!ANY(hits)) return;
+
+  /* The hit chord's ends: this step's, or a buffered chord's (its start state exactly
+   * as the integrator had it; no Kahan compensation, which is zero in double). */
+  const MASKV from_chunk = VLOAD(0, buffered) != (IDXV)0;
+  ray6 hy0, hy1;
+  hy0.x = VLOAD(0, h0[0]), hy0.y = VLOAD(0, h0[1]), hy0.z = VLOAD(0, h0[2]);
+  hy0.vx = VLOAD(0, h0[3]), hy0.vy = VLOAD(0, h0[4]), hy0.vz = VLOAD(0, h0[5]);
+  hy1.x = VLOAD(0, h1[0]), hy1.y = VLOAD(0, h1[1]), hy1.z = VLOAD(0, h1[2]);
+  hy1.vx = VLOAD(0, h1[3]), hy1.vy = VLOAD(0, h1[4]), hy1.vz = VLOAD(0, h1[5]);
+  const REALV hs0 = VLOAD(0, h0[6]);
+  REALV hs1 = VLOAD(0, h1[6]);
+  ray6 zero = ray_times(comp0, (REALV)RC(0));
+  ray6 hc0 = ray_select(comp0, zero, from_chunk);
+  ray6 hc1 = ray_select(*comp1, zero, from_chunk);
 
   quadric surf;
   surf.a = VLOAD(0, q[0]);
@@ -252,15 +417,18 @@ ARCUS_INLINE void geometry_step(const medium* m, const advance_desc* job, const 
   /* The path crosses the surface within the step where the step's end lies beyond it;
    * otherwise (a chord through a whole sphere, a chord in the plane) the chord's own
    * hit point stands, off the path by at most the step's sagitta. */
-  const MASKV bracketed = hits & (surface_distance(job, &surf, *y1) > RC(0));
+  const MASKV bracketed = hits & (surface_distance(job, &surf, hy1) > RC(0));
   const MASKV chord = hits & !bracketed;
   if (ANY(chord)) {
     const REALV t = VLOAD(0, t_hit);
-    ray6 at = ray_step(y0, t, ray_step(*y1, (REALV)RC(-1), y0)); /* y0 + t·(y1 − y0) */
-    *y1 = ray_select(*y1, at, chord);
-    *s1 = SEL(*s1, s0 + t * (*s1 - s0), chord);
+    ray6 at = ray_step(hy0, t, ray_step(hy1, (REALV)RC(-1), hy0)); /* y0 + t·(y1 − y0) */
+    hy1 = ray_select(hy1, at, chord);
+    hs1 = SEL(hs1, hs0 + t * (hs1 - hs0), chord);
   }
-  if (ANY(bracketed)) cross_surface(m, job, &surf, y0, comp0, s0, *s1 - s0, y1, comp1, s1, bracketed);
+  if (ANY(bracketed)) cross_surface(m, job, &surf, hy0, hc0, hs0, hs1 - hs0, &hy1, &hc1, &hs1, bracketed);
+  *y1 = ray_select(*y1, hy1, hits);
+  *comp1 = ray_select(*comp1, hc1, hits);
+  *s1 = SEL(*s1, hs1, hits);
   *status = SEL(*status, (IDXV)ARCUS_STATUS_HIT, hits);
 }
 

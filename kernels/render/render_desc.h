@@ -10,8 +10,6 @@
 
 /* Internal ray status codes beyond advance_desc.h's (render jobs only). */
 #define ARCUS_STATUS_HIT 7   /* stopped on a primitive: the end state is the hit        */
-#define ARCUS_STATUS_RETRY 8 /* smart step selection could not prove the skipped steps
-                              * empty: the host traces the ray again without prediction */
 
 /* Kinds of hit. */
 #define ARCUS_HIT_NONE 0
@@ -48,10 +46,6 @@
                              * set to -1 once the skipped steps are proved empty      */
 #define ARCUS_HIT_STEP 4    /* the step (segment index) that hit                      */
 #define ARCUS_HIT_INTS 5
-/* ... and reals: the box of the steps skipped so far (smart step selection). */
-#define ARCUS_HIT_SKIPPED_LO 0
-#define ARCUS_HIT_SKIPPED_HI 3
-#define ARCUS_HIT_REALS 6
 
 #ifdef __OPENCL_C_VERSION__
 ARCUS_DECLARE_SHAPE(shape, REAL, int);

@@ -112,6 +112,7 @@ __kernel void arcus_walk(__global const REAL* paths, const int capacity, __globa
   REALV s[ARCUS_GROUPS];
   IDXV count[ARCUS_GROUPS], status[ARCUS_GROUPS];
   hit_state hs[ARCUS_GROUPS];
+  smart_chunk chunk[ARCUS_GROUPS];
   int longest = 0;
   FOR_GROUPS(g) {
     const size_t v = first_vector + g;
@@ -158,9 +159,7 @@ __kernel void arcus_walk(__global const REAL* paths, const int capacity, __globa
     hs[g].tests = 0;
     hs[g].step = (IDXV)-1;
     hs[g].predict = predictions ? VLOAD_I(v, predictions) : (IDXV)-1;
-    hs[g].lo[0] = hs[g].hi[0] = y[g].x;
-    hs[g].lo[1] = hs[g].hi[1] = y[g].y;
-    hs[g].lo[2] = hs[g].hi[2] = y[g].z;
+    smart_chunk_start(&chunk[g], y[g], s[g]);
   }
   ray6 zero; /* no Kahan compensation: recorded points are exact states */
   zero.x = zero.y = zero.z = zero.vx = zero.vy = zero.vz = (REALV)RC(0);
@@ -172,11 +171,10 @@ __kernel void arcus_walk(__global const REAL* paths, const int capacity, __globa
       REALV s1 = s[g];
       walk_load(paths, capacity, counts, lanes[g], k + 1, plane, &y1, &s1);
       geometry_step(MED(g), &job, &geo, nodes, tris, shapes, y[g], zero, s[g], &y1, &comp1, &s1, (IDXV)(k + 1), moved,
-                    moved & ((IDXV)(k + 2) >= count[g]), &hs[g], &status[g]);
+                    moved & ((IDXV)(k + 2) >= count[g]), 0, &hs[g], &chunk[g], &status[g]);
       /* Lanes that moved stand at the chord's end now, or on the surface they hit. */
-      const MASKV advanced = moved & (status[g] != (IDXV)ARCUS_STATUS_RETRY);
-      y[g] = ray_select(y[g], y1, advanced);
-      s[g] = SEL(s[g], s1, advanced);
+      y[g] = ray_select(y[g], y1, moved);
+      s[g] = SEL(s[g], s1, moved);
     }
   }
   FOR_GROUPS(g) {

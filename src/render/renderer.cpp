@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "render/photons.h"
 #include "render/trace.h"
 
 arcus_renderer_s::arcus_renderer_s(arcus_context_t* ctx, arcus::render::RenderScene* s)
@@ -89,18 +90,12 @@ struct Primary {
         tests(n, 0), end_step(n, -1), position(3 * n, NAN), direction(3 * n, 0), length(n, 0), steps(n, 0) {}
 };
 
-// Stores a trace's or walk's results per pixel (tests and steps add up over retries).
-// Returns the indices (into the batch) of rays that must be traced again.
-std::vector<size_t> store(const TraceOutput& t, const std::vector<size_t>& pixels, Primary* out) {
-  std::vector<size_t> retry;
+// Stores a trace's or walk's results per pixel.
+void store(const TraceOutput& t, const std::vector<size_t>& pixels, Primary* out) {
   for (size_t k = 0; k < pixels.size(); ++k) {
     const size_t p = pixels[k];
-    out->tests[p] += t.tests[k];
-    out->steps[p] += t.steps[k];
-    if (t.status[k] == ARCUS_STATUS_RETRY) {
-      retry.push_back(k);
-      continue;
-    }
+    out->tests[p] = t.tests[k];
+    out->steps[p] = t.steps[k];
     out->status[p] = t.status[k];
     out->object[p] = t.object[k];
     out->primitive[p] = t.primitive[k];
@@ -115,10 +110,9 @@ std::vector<size_t> store(const TraceOutput& t, const std::vector<size_t>& pixel
       out->direction[3 * p + a] = t.directions[3 * k + a];
     }
   }
-  return retry;
 }
 
-std::vector<size_t> trace_batch(arcus_context_t* ctx, arcus_renderer_s* r, const Batch& b, bool predict,
+void trace_batch(arcus_context_t* ctx, arcus_renderer_s* r, const Batch& b, bool predict,
                                 Primary* out, arcus_render_stats* st) {
   TraceInput in;
   in.count = b.size();
@@ -128,7 +122,7 @@ std::vector<size_t> trace_batch(arcus_context_t* ctx, arcus_renderer_s* r, const
   const TraceOutput t = trace(ctx, r->scene, r->params, in);
   st->trace_seconds += t.stats.total_seconds;
   st->rays_traced += b.size();
-  return store(t, b.pixels, out);
+  store(t, b.pixels, out);
 }
 
 // Smart step selection's spatial prediction (thesis §4.3.3): a coarse grid of pixels
@@ -255,7 +249,29 @@ void shade(arcus_context_t* ctx, arcus_renderer_s* r, const Primary& prim, Rende
       radiance[p] = sky_radiance(s, d);
     }
   }
-  for (const LightDesc& light : s.desc.lights) {
+  if (s.desc.photons.count > 0) {
+    // Curved photon mapping (thesis §4.3.4, render/photons.h): the photons' irradiance
+    // replaces the direct light of shadow rays.
+    PhotonStats ps;
+    const auto map = shoot_photons(ctx, r->scene, r->params, s.desc.photons.count, /*seed=*/1, &ps);
+    job->render_stats.photon_seconds = ps.seconds;
+    job->render_stats.photons = ps.stored;
+    std::vector<double> points, normals;
+    std::vector<size_t> hit_pixels;
+    for (size_t p = 0; p < n; ++p) {
+      if (prim.status[p] != ARCUS_STATUS_HIT) continue;
+      points.insert(points.end(), &prim.position[3 * p], &prim.position[3 * p] + 3);
+      normals.insert(normals.end(), {surfaces[p].normal.x, surfaces[p].normal.y, surfaces[p].normal.z});
+      hit_pixels.push_back(p);
+    }
+    const std::vector<double> e = photon_irradiance(ctx, *map, s, points, normals);
+    for (size_t k = 0; k < hit_pixels.size(); ++k) {
+      const size_t p = hit_pixels[k];
+      radiance[p] = radiance[p] + (1 / M_PI) * V3{base[p].x * e[3 * k], base[p].y * e[3 * k + 1],
+                                                  base[p].z * e[3 * k + 2]};
+    }
+  }
+  for (const LightDesc& light : s.desc.photons.count > 0 ? std::vector<LightDesc>() : s.desc.lights) {
     Batch b;
     std::vector<double> cosine, falloff;
     for (size_t p = 0; p < n; ++p) {
@@ -447,24 +463,18 @@ void walk_frame(arcus_context_t* ctx, arcus_renderer_s* r, const Frame& f, Prima
     for (size_t p : pixels) rays.push_back(paths->rays[p]);
     const TraceOutput t = walk(ctx, r->scene, r->params, paths->paths, rays, paths->plane,
                                predictions ? predictions->data() : nullptr);
-    std::vector<size_t> retry;
-    for (size_t k : store(t, pixels, prim)) retry.push_back(pixels[k]);
-    return retry;
+    store(t, pixels, prim);
   };
   std::vector<int32_t> predicted;
   if (temporal)
     for (size_t p : first) predicted.push_back(r->previous_hit_step[p]);
-  std::vector<size_t> again = run(first, temporal ? &predicted : nullptr);
+  run(first, temporal ? &predicted : nullptr);
   if (!rest.empty()) {
     predicted.clear();
     for (size_t p : rest)
       predicted.push_back(spatial_prediction(*prim, c, static_cast<uint32_t>(p % c.width),
                                              static_cast<uint32_t>(p / c.width)));
-    for (size_t p : run(rest, &predicted)) again.push_back(p);
-  }
-  if (!again.empty()) {
-    st->rays_retried += again.size();
-    run(again, nullptr);
+    run(rest, &predicted);
   }
   st->walk_seconds += since(walk_start);
   if (cache) {
@@ -515,9 +525,7 @@ std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_call
         rest.add(f.origin, d, p, -1);
     }
   report(0.0);
-  std::vector<size_t> retry = trace_batch(ctx, r, first, temporal, &prim, &st);
-  Batch again;
-  for (size_t k : retry) again.add(f.origin, v3(&first.directions[3 * k]), first.pixels[k], -1);
+  trace_batch(ctx, r, first, temporal, &prim, &st);
   report(0.5);
   if (rest.size()) {
     for (size_t k = 0; k < rest.size(); ++k) {
@@ -525,19 +533,14 @@ std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_call
       rest.predictions[k] = spatial_prediction(prim, c, static_cast<uint32_t>(p % c.width),
                                                static_cast<uint32_t>(p / c.width));
     }
-    for (size_t k : trace_batch(ctx, r, rest, true, &prim, &st))
-      again.add(f.origin, v3(&rest.directions[3 * k]), rest.pixels[k], -1);
-  }
-  if (again.size()) {
-    st.rays_retried = again.size();
-    trace_batch(ctx, r, again, false, &prim, &st);
+    trace_batch(ctx, r, rest, true, &prim, &st);
   }
   }
   report(0.8);
 
   const auto shade_start = Clock::now();
   shade(ctx, r, prim, job.get());
-  st.shade_seconds = since(shade_start);
+  st.shade_seconds = since(shade_start) - st.photon_seconds;  // shade() shoots the photons too
 
   job->width = c.width;
   job->height = c.height;

@@ -55,13 +55,11 @@ void use_bounds(const RenderScene* scene, arcus_advance_params* p) {
 // The geometry arguments of the trace and walk kernels (GEOMETRY_PARAMS in advance.cl),
 // with the hit records and predictions they fill or read.
 struct GeometryArgs {
-  std::unique_ptr<DeviceBuffer> hits, hit_reals, predictions;
+  std::unique_ptr<DeviceBuffer> hits, predictions;
   void set(arcus_context_t* ctx, RenderScene* scene, bool single, KernelCall& kernel, unsigned arg, size_t stride,
            size_t count, const int32_t* predicted) {
-    const size_t real = single ? sizeof(float) : sizeof(double);
     const auto& bvh = scene->device_bvh[single ? 1 : 0];
     hits = std::make_unique<DeviceBuffer>(ctx, ARCUS_HIT_INTS * stride * sizeof(int32_t), "the hit records");
-    hit_reals = std::make_unique<DeviceBuffer>(ctx, ARCUS_HIT_REALS * stride * real, "the hit records");
     if (predicted) {
       std::vector<int32_t> pred(stride, -1);
       std::copy(predicted, predicted + count, pred.begin());
@@ -75,7 +73,6 @@ struct GeometryArgs {
     kernel.set(arg++, scene->device_shapes[single ? 1 : 0].get());
     kernel.set_value(arg++, geo);
     kernel.set(arg++, hits.get());
-    kernel.set(arg++, hit_reals.get());
     kernel.set(arg++, predictions.get());
   }
   std::vector<int32_t> read(arcus_context_t* ctx, size_t stride) const {
