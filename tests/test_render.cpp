@@ -171,20 +171,21 @@ TEST_F(Render, AConstantMediumRendersTheStraightPinholeImage) {
   EXPECT_GT(silhouette, 100);  // the sphere covers a good part of the image
 }
 
+// The inferior mirage at 120×60: the scene the technique tests render.
+std::string small_mirage() {
+  std::ifstream in(std::string(ARCUS_SOURCE_DIR) + "/scenes/inferior_mirage.json");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text.replace(text.find("\"height\": 400"), 13, "\"height\": 60");
+  text.replace(text.find("\"width\": 800"), 12, "\"width\": 120");
+  const std::string mesh_ref = "../data/meshes/";
+  text.replace(text.find(mesh_ref), mesh_ref.size(), std::string(ARCUS_SOURCE_DIR) + "/data/meshes/");
+  return text;
+}
+
 // Smart step selection skips tests but proves the skipped steps empty, so its hits are
 // exactly those of the exhaustive scan: same object, same primitive, same point.
 TEST_F(Render, SmartStepSelectionFindsExactlyTheExhaustiveScansHits) {
-  std::ifstream in(std::string(ARCUS_SOURCE_DIR) + "/scenes/inferior_mirage.json");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  // A smaller image of the same scene (the test must stay short on two cores).
-  const size_t w = text.find("\"width\": 800"), h = text.find("\"height\": 400");
-  ASSERT_NE(w, std::string::npos);
-  ASSERT_NE(h, std::string::npos);
-  text.replace(h, 13, "\"height\": 60");
-  text.replace(w, 12, "\"width\": 120");
-  const std::string mesh_ref = "../data/meshes/tower.ply";
-  text.replace(text.find(mesh_ref), mesh_ref.size(), mesh("tower.ply"));
-  arcus_scene_t* scene = load(text, "smart");
+  arcus_scene_t* scene = load(small_mirage(), "smart");
   ASSERT_NE(scene, nullptr);
   const Rendered full = render(scene, 0);
   const Rendered smart = render(scene, ARCUS_TECHNIQUE_SMART_STEP, 2);  // the second frame predicts from the first
@@ -203,17 +204,6 @@ TEST_F(Render, SmartStepSelectionFindsExactlyTheExhaustiveScansHits) {
     EXPECT_GT(hits, 1000);
   }
   EXPECT_LT(smart.stats.tests, full.stats.tests);
-}
-
-// The inferior mirage at 120×60: the scene every technique test below renders.
-std::string small_mirage() {
-  std::ifstream in(std::string(ARCUS_SOURCE_DIR) + "/scenes/inferior_mirage.json");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  text.replace(text.find("\"height\": 400"), 13, "\"height\": 60");
-  text.replace(text.find("\"width\": 800"), 12, "\"width\": 120");
-  const std::string mesh_ref = "../data/meshes/";
-  text.replace(text.find(mesh_ref), mesh_ref.size(), std::string(ARCUS_SOURCE_DIR) + "/data/meshes/");
-  return text;
 }
 
 // Hit points of two renders: how many pixels see another primitive, and the largest
@@ -373,8 +363,12 @@ TEST_F(Render, TheSunAtOnePointFiveTimesTenToTheElevenMetresIsHitInDoubleAndFloa
     for (int j = 0; j < 21; ++j)
       for (int i = 0; i < 21; ++i) {
         const double r = std::hypot(i - 10, j - 10);
-        if (r < 4.5) EXPECT_EQ(img.objects[j * 21 + i], 0) << precision << " " << i << "," << j;
-        if (r > 6.5) EXPECT_EQ(img.objects[j * 21 + i], -1) << precision << " " << i << "," << j;
+        if (r < 4.5) {
+          EXPECT_EQ(img.objects[j * 21 + i], 0) << precision << " " << i << "," << j;
+        }
+        if (r > 6.5) {
+          EXPECT_EQ(img.objects[j * 21 + i], -1) << precision << " " << i << "," << j;
+        }
         if (img.objects[j * 21 + i] == 0) {
           // The straight ray through the pixel's centre meets the sphere at the closed
           // form t = (D² − r²) / (b + sqrt(b² − D² + r²)), b = D·dx/|d| (stable form):
