@@ -387,6 +387,59 @@ TEST_F(Render, TheSunAtOnePointFiveTimesTenToTheElevenMetresIsHitInDoubleAndFloa
   }
 }
 
+// Spectral rendering through a dispersive atmosphere: the sunset scene, which frames
+// the sun's upper limb 0.12° tall, at 120×60 (0.002° a pixel).  Air lifts short
+// wavelengths more than long ones (by ~0.006° between 420 and 680 nm here), so just
+// below the limb the pixels see the sun at short wavelengths only — green, as Rayleigh
+// extinction at this air mass has taken the blue — while deep inside the disc every
+// wavelength reaches it: the limb is greener (G/R higher) than the disc, in every
+// column.  A spectral scene compiles per-ray dispersion; an RGB scene does not.
+TEST_F(Render, ASpectralSunsetHasAGreenUpperRimAndCompilesDispersionOnlyWhenSpectral) {
+  std::ifstream in(std::string(ARCUS_SOURCE_DIR) + "/scenes/sunset_spectral.json");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text.replace(text.find("\"width\": 360"), 12, "\"width\": 120");
+  text.replace(text.find("\"height\": 180"), 13, "\"height\": 60");
+  arcus_scene_t* scene = load(text, "sunset");
+  ASSERT_NE(scene, nullptr);
+  arcus_renderer_t* r = nullptr;
+  ASSERT_EQ(arcus_renderer_create(scene, &r), ARCUS_SUCCESS);
+  arcus_job_t* job = nullptr;
+  ASSERT_EQ(arcus_render_frame(r, nullptr, nullptr, &job), ARCUS_SUCCESS) << last_error();
+  arcus_features features = 0;
+  ASSERT_EQ(arcus_job_get_features(job, &features), ARCUS_SUCCESS);
+  EXPECT_TRUE(features & ARCUS_FEATURE_DISPERSION);
+  const int w = 120, h = 60;
+  std::vector<float> rgb(w * h * 3);
+  ASSERT_EQ(arcus_job_get_image(job, rgb.data()), ARCUS_SUCCESS);
+  std::vector<int32_t> objects(w * h);  // as the first (shortest) wavelength sees them
+  ASSERT_EQ(arcus_job_get_hits(job, nullptr, objects.data(), nullptr, nullptr, nullptr, nullptr), ARCUS_SUCCESS);
+  arcus_job_release(job);
+  arcus_renderer_release(r);
+  arcus_scene_release(scene);
+  int columns = 0;
+  for (int i = 0; i < w; ++i) {
+    int top = -1;
+    for (int j = 0; j < h && top < 0; ++j)
+      if (objects[j * w + i] == 0) top = j;
+    if (top < 0 || top + 12 >= h) continue;
+    auto ratio = [&](int j) { return rgb[3 * (j * w + i) + 1] / rgb[3 * (j * w + i)]; };
+    EXPECT_GT(ratio(top), 1.2 * ratio(top + 12)) << "column " << i;
+    ++columns;
+  }
+  EXPECT_GT(columns, 60);
+  // The inferior mirage is an RGB scene: no dispersion compiled.
+  arcus_scene_t* rgb_scene = load(small_mirage(), "rgb");
+  ASSERT_NE(rgb_scene, nullptr);
+  ASSERT_EQ(arcus_renderer_create(rgb_scene, &r), ARCUS_SUCCESS);
+  ASSERT_EQ(arcus_render_frame(r, nullptr, nullptr, &job), ARCUS_SUCCESS) << last_error();
+  ASSERT_EQ(arcus_job_get_features(job, &features), ARCUS_SUCCESS);
+  EXPECT_FALSE(features & ARCUS_FEATURE_DISPERSION);
+  EXPECT_TRUE(features & ARCUS_FEATURE_GEOMETRY);
+  arcus_job_release(job);
+  arcus_renderer_release(r);
+  arcus_scene_release(rgb_scene);
+}
+
 // ---- bad input: a status and a message naming the file and the key -----------------
 
 TEST_F(Render, AMissingMeshFileIsAnIoErrorNamingTheSceneTheKeyAndTheFile) {

@@ -6,6 +6,8 @@
 #include <limits>
 
 #include "core/error.h"
+#include "spectral/cie.h"
+#include "spectral/srgb.h"
 #include "render/photons.h"
 #include "render/trace.h"
 
@@ -84,10 +86,13 @@ struct Primary {
   std::vector<int32_t> status, object, primitive, kind, index, hit_step, tests;
   std::vector<int32_t> end_step;  // the step that ended the ray (hit or left the scene), -1: failed
   std::vector<double> position, direction, length;
+  std::vector<double> start;  // the primary ray's initial direction
+  arcus_features features = 0;  // compiled by the programs that traced or walked them
   std::vector<uint64_t> steps;
   explicit Primary(size_t n)
       : status(n, ARCUS_STATUS_FAILED), object(n, -1), primitive(n, -1), kind(n, 0), index(n, -1), hit_step(n, -1),
-        tests(n, 0), end_step(n, -1), position(3 * n, NAN), direction(3 * n, 0), length(n, 0), steps(n, 0) {}
+        tests(n, 0), end_step(n, -1), position(3 * n, NAN), direction(3 * n, 0), length(n, 0), start(3 * n, 0),
+        steps(n, 0) {}
 };
 
 // Stores a trace's or walk's results per pixel.
@@ -112,17 +117,23 @@ void store(const TraceOutput& t, const std::vector<size_t>& pixels, Primary* out
   }
 }
 
-void trace_batch(arcus_context_t* ctx, arcus_renderer_s* r, const Batch& b, bool predict,
-                                Primary* out, arcus_render_stats* st) {
+// Traces a batch of primary rays, all at `wavelength` (nm; NaN: the medium's own).
+void trace_batch(arcus_context_t* ctx, arcus_renderer_s* r, const Batch& b, bool predict, double wavelength,
+                 Primary* out, arcus_render_stats* st) {
   TraceInput in;
   in.count = b.size();
   in.origins = b.origins.data();
   in.directions = b.directions.data();
+  const std::vector<double> wavelengths(std::isnan(wavelength) ? 0 : b.size(), wavelength);
+  if (!wavelengths.empty()) in.wavelengths = wavelengths.data();
   in.predictions = predict ? b.predictions.data() : nullptr;
   const TraceOutput t = trace(ctx, r->scene, r->params, in);
   st->trace_seconds += t.stats.total_seconds;
   st->rays_traced += b.size();
   store(t, b.pixels, out);
+  out->features |= t.features;
+  for (size_t k = 0; k < b.size(); ++k)
+    std::copy(&b.directions[3 * k], &b.directions[3 * k] + 3, &out->start[3 * b.pixels[k]]);
 }
 
 // Smart step selection's spatial prediction (thesis §4.3.3): a coarse grid of pixels
@@ -307,6 +318,7 @@ void shade(arcus_context_t* ctx, arcus_renderer_s* r, const Primary& prim, Rende
       }
     }
     const TraceOutput t = trace(ctx, r->scene, p, in);
+    job->features |= t.features;
     job->render_stats.shadow_rays += b.size();
     job->render_stats.trace_seconds += 0;  // shadow time is the shading stage's
     for (size_t k = 0; k < b.size(); ++k) {
@@ -389,7 +401,7 @@ PathFrame pixel_paths(arcus_context_t* ctx, arcus_renderer_s* r, const Frame& f,
   in.directions = b.directions.data();
   arcus_job_stats js{};
   PathFrame frame;
-  frame.paths = record_paths(ctx, r->scene, r->params, in, capacity_hint, &js);
+  frame.paths = record_paths(ctx, r->scene, r->params, in, capacity_hint, &js, &frame.features);
   st->trace_seconds += js.total_seconds;
   st->rays_traced += b.size();
   // The mirror: the plane through the camera normal to its right axis.
@@ -417,9 +429,96 @@ PathFrame pixel_paths(arcus_context_t* ctx, arcus_renderer_s* r, const Frame& f,
 
 }  // namespace
 
+namespace {
+
+// The primary rays of a frame traced directly (no stored paths), smart step selection
+// predicting from the last frame or from a coarse first pass; at `wavelength` (nm) or,
+// for NaN, the medium's own.
+void direct_pass(arcus_context_t* ctx, arcus_renderer_s* r, const Frame& f, double wavelength, Primary* prim,
+                 arcus_render_stats* st) {
+  const CameraDesc& c = r->camera;
+  const size_t n = static_cast<size_t>(c.width) * c.height;
+  const bool smart = r->techniques & ARCUS_TECHNIQUE_SMART_STEP;
+  const bool temporal = smart && r->previous_hit_step.size() == n && std::isnan(wavelength);
+  r->cached_paths.reset();
+  Batch first, rest;
+  for (uint32_t j = 0; j < c.height; ++j)
+    for (uint32_t i = 0; i < c.width; ++i) {
+      const size_t p = static_cast<size_t>(j) * c.width + i;
+      const V3 d = pixel_direction(f, c, i, j);
+      if (!smart || temporal)
+        first.add(f.origin, d, p, temporal ? r->previous_hit_step[p] : -1);
+      else if (i % kCoarse == 0 && j % kCoarse == 0)
+        first.add(f.origin, d, p, -1);
+      else
+        rest.add(f.origin, d, p, -1);
+    }
+  trace_batch(ctx, r, first, temporal, wavelength, prim, st);
+  if (rest.size()) {
+    for (size_t k = 0; k < rest.size(); ++k) {
+      const size_t p = rest.pixels[k];
+      rest.predictions[k] = spatial_prediction(*prim, c, static_cast<uint32_t>(p % c.width),
+                                               static_cast<uint32_t>(p / c.width));
+    }
+    trace_batch(ctx, r, rest, true, wavelength, prim, st);
+  }
+}
+
+// Planck's law, relative: B(λ, T) / B(555 nm, T).
+double planck_relative(double nm, double kelvin) {
+  const double c2 = 1.438776877e-2;  // m·K, second radiation constant
+  auto b = [&](double lambda) { return 1 / (std::pow(lambda, 5) * std::expm1(c2 / (lambda * kelvin))); };
+  return b(nm * 1e-9) / b(555e-9);
+}
+
+// Rayleigh optical depth of the whole atmosphere at sea level, vertically (Hansen and
+// Travis 1974, eq. 2.29, λ in µm), scaled by the sea-level pressure.
+double rayleigh_depth(double nm, double pressure) {
+  const double l = nm * 1e-3;
+  return 0.008569 / std::pow(l, 4) * (1 + 0.0113 / (l * l) + 0.00013 / std::pow(l, 4)) * pressure / 101325.0;
+}
+
+// Relative air mass at apparent elevation h (degrees) (Kasten and Young 1989): 1 at the
+// zenith, about 38 at the horizon; the formula holds to h = 0 and a little below.
+double air_mass(double h_deg) {
+  const double h = std::max(h_deg, -2.0);
+  return 1 / (std::sin(h * M_PI / 180) + 0.50572 * std::pow(h + 6.07995, -1.6364));
+}
+
+// Pixel p's spectral radiance at `nm` from its RGB shading: a blackbody emitter gives
+// Planck's spectrum at its temperature (scaled by its emission's mean), dimmed by
+// Rayleigh extinction along the air mass of the ray's apparent elevation when it lies
+// beyond the atmosphere (the sun); any other RGB value stands for the band of its
+// channel (blue below 490 nm, green to 580 nm, red above).
+double spectral_radiance(const RenderScene& s, const Frame& f, const Primary& prim, size_t p, const float* rgb,
+                         double nm) {
+  if (prim.status[p] == ARCUS_STATUS_HIT) {
+    const MaterialDesc& m = s.desc.materials[static_cast<size_t>(s.desc.objects[static_cast<size_t>(prim.object[p])].material)];
+    if (m.blackbody_k > 0) {
+      double L = (m.emission[0] + m.emission[1] + m.emission[2]) / 3 * planck_relative(nm, m.blackbody_k);
+      const bool atmosphere = s.field->desc.kind == ARCUS_KIND_ATMOSPHERE;
+      if (atmosphere && prim.length[p] > 1e5) {
+        // The apparent elevation: the primary ray's start against the local horizontal.
+        const V3 up = s.field->desc.spherical ? normalized(f.origin) : V3{0, 1, 0};
+        const V3 d = normalized(v3(&prim.start[3 * p]));
+        const double h = std::asin(std::clamp(dot(d, up), -1.0, 1.0)) * 180 / M_PI;
+        L *= std::exp(-rayleigh_depth(nm, s.desc.medium.atmosphere.sea_level_pressure) * air_mass(h));
+      }
+      return L;
+    }
+  }
+  return nm < 490 ? rgb[2] : nm < 580 ? rgb[1] : rgb[0];
+}
+
+}  // namespace
+
 std::string technique_problem(const arcus_renderer_s& r, uint32_t techniques) {
   if (techniques & ~static_cast<uint32_t>(ARCUS_TECHNIQUE_ALL))
     return "techniques: unknown bits " + std::to_string(techniques & ~static_cast<uint32_t>(ARCUS_TECHNIQUE_ALL));
+  const uint32_t path_based = ARCUS_TECHNIQUE_SYMMETRY | ARCUS_TECHNIQUE_UNDERSAMPLE | ARCUS_TECHNIQUE_PATH_CACHE;
+  if ((techniques & path_based) && !r.scene->desc.wavelengths.empty())
+    return "techniques: symmetry, undersampling and path caching work on RGB scenes; a spectral scene traces each "
+           "wavelength's rays through the dispersive medium (use smart_step)";
   if (techniques & ARCUS_TECHNIQUE_SYMMETRY) {
     const std::string why = asymmetry(r);
     if (!why.empty()) return "techniques: symmetry needs a medium symmetric about the camera's vertical plane: " + why;
@@ -449,6 +548,7 @@ void walk_frame(arcus_context_t* ctx, arcus_renderer_s* r, const Frame& f, Prima
     fresh = std::make_unique<PathFrame>(pixel_paths(ctx, r, f, hint, st));
     paths = fresh.get();
   }
+  prim->features |= paths->features;
   const auto walk_start = Clock::now();
   const bool temporal = smart && r->previous_hit_step.size() == n;
   std::vector<size_t> first, rest;
@@ -464,6 +564,7 @@ void walk_frame(arcus_context_t* ctx, arcus_renderer_s* r, const Frame& f, Prima
     const TraceOutput t = walk(ctx, r->scene, r->params, paths->paths, rays, paths->plane,
                                predictions ? predictions->data() : nullptr);
     store(t, pixels, prim);
+    prim->features |= t.features;
   };
   std::vector<int32_t> predicted;
   if (temporal)
@@ -505,42 +606,45 @@ std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_call
   };
 
   const uint32_t path_based = ARCUS_TECHNIQUE_SYMMETRY | ARCUS_TECHNIQUE_UNDERSAMPLE | ARCUS_TECHNIQUE_PATH_CACHE;
-  const bool smart = r->techniques & ARCUS_TECHNIQUE_SMART_STEP;
-  const bool temporal = smart && r->previous_hit_step.size() == n;
+  const std::vector<double>& wavelengths = r->scene->desc.wavelengths;
   report(0.0);
-  if (r->techniques & path_based) {
-    walk_frame(ctx, r, f, &prim, &st);
+  double shade_seconds = 0;
+  if (!wavelengths.empty()) {
+    // Spectral (thesis §2.2; README, "Spectral rendering"): each wavelength's rays are
+    // traced through the dispersive medium and shaded, and the spectral radiance is
+    // integrated against the CIE 1931 colour-matching functions into XYZ, then sRGB.
+    r->cached_paths.reset();
+    const auto weights = spectral::band_weights(wavelengths);
+    std::vector<std::array<double, 3>> xyz(n, std::array<double, 3>{0, 0, 0});
+    for (size_t k = 0; k < wavelengths.size(); ++k) {
+      Primary pk(n);
+      direct_pass(ctx, r, f, wavelengths[k], &pk, &st);
+      const auto t = Clock::now();
+      shade(ctx, r, pk, job.get());
+      for (size_t p = 0; p < n; ++p) {
+        const double L = spectral_radiance(*r->scene, f, pk, p, &job->rgb[3 * p], wavelengths[k]);
+        for (int c3 = 0; c3 < 3; ++c3) xyz[p][c3] += L * weights[k][c3];
+      }
+      shade_seconds += since(t);
+      job->features |= pk.features;
+      if (k == 0) prim = std::move(pk);  // the figures of the first wavelength
+      report(0.8 * (k + 1) / wavelengths.size());
+    }
+    for (size_t p = 0; p < n; ++p) {
+      const auto rgb = spectral::xyz_to_linear_srgb(xyz[p]);
+      for (int c3 = 0; c3 < 3; ++c3) job->rgb[3 * p + c3] = static_cast<float>(rgb[c3]);
+    }
   } else {
-  r->cached_paths.reset();
-  Batch first, rest;
-  for (uint32_t j = 0; j < c.height; ++j)
-    for (uint32_t i = 0; i < c.width; ++i) {
-      const size_t p = static_cast<size_t>(j) * c.width + i;
-      const V3 d = pixel_direction(f, c, i, j);
-      if (!smart || temporal)
-        first.add(f.origin, d, p, temporal ? r->previous_hit_step[p] : -1);
-      else if (i % kCoarse == 0 && j % kCoarse == 0)
-        first.add(f.origin, d, p, -1);
-      else
-        rest.add(f.origin, d, p, -1);
-    }
-  report(0.0);
-  trace_batch(ctx, r, first, temporal, &prim, &st);
-  report(0.5);
-  if (rest.size()) {
-    for (size_t k = 0; k < rest.size(); ++k) {
-      const size_t p = rest.pixels[k];
-      rest.predictions[k] = spatial_prediction(prim, c, static_cast<uint32_t>(p % c.width),
-                                               static_cast<uint32_t>(p / c.width));
-    }
-    trace_batch(ctx, r, rest, true, &prim, &st);
+    if (r->techniques & path_based)
+      walk_frame(ctx, r, f, &prim, &st);
+    else
+      direct_pass(ctx, r, f, NAN, &prim, &st);
+    report(0.8);
+    const auto t = Clock::now();
+    shade(ctx, r, prim, job.get());
+    shade_seconds = since(t);
   }
-  }
-  report(0.8);
-
-  const auto shade_start = Clock::now();
-  shade(ctx, r, prim, job.get());
-  st.shade_seconds = since(shade_start) - st.photon_seconds;  // shade() shoots the photons too
+  st.shade_seconds = shade_seconds - st.photon_seconds;  // shade() shoots the photons too
 
   job->width = c.width;
   job->height = c.height;
@@ -561,7 +665,7 @@ std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_call
   r->previous_hit_step = prim.end_step;
   r->previous_steps = 0;
   for (uint64_t k : prim.steps) r->previous_steps = std::max(r->previous_steps, k);
-  job->features = ARCUS_FEATURE_GEOMETRY;
+  job->features |= prim.features;
   st.total_seconds = since(start);
   job->stats.total_seconds = st.total_seconds;
   report(1.0);

@@ -17,6 +17,7 @@ struct PathFrame {
   DevicePaths paths;
   std::vector<WalkRay> rays;
   MirrorPlane plane;
+  arcus_features features = 0;  // the recording's program
 };
 }  // namespace arcus::render
 

@@ -64,7 +64,7 @@ CameraDesc parse_camera(const Node& c) {
 }
 
 MaterialDesc parse_material(const Node& m, const std::string& name, const std::string& base_dir) {
-  m.expect_object({"diffuse", "texture", "uv_scale", "emission"});
+  m.expect_object({"diffuse", "texture", "uv_scale", "emission", "blackbody_k"});
   MaterialDesc d;
   d.name = name;
   if (auto v = m.find("diffuse")) d.diffuse = colour(*v);
@@ -75,6 +75,7 @@ MaterialDesc parse_material(const Node& m, const std::string& name, const std::s
     d.uv_scale = {e[0].number(), e[1].number()};
   }
   if (auto v = m.find("emission")) d.emission = colour(*v);
+  if (auto v = m.find("blackbody_k")) d.blackbody_k = positive(*v);
   return d;
 }
 

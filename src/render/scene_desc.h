@@ -20,6 +20,8 @@ struct MaterialDesc {
   std::string texture;          // absolute path, or empty
   std::array<double, 2> uv_scale{1, 1};
   Vec3 emission{0, 0, 0};  // radiance emitted (W·m⁻²·sr⁻¹ per channel)
+  double blackbody_k = 0;  // spectral scenes: emits Planck's spectrum at this temperature
+                           // (scaled to the emission's mean at 555 nm); 0: RGB bands
 };
 
 enum class ObjectKind { Mesh, Sphere, Disc };

@@ -124,6 +124,7 @@ TraceOutput trace(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params
   out.steps = std::move(job->steps);
   out.status = std::move(job->status);
   out.stats = job->stats;
+  out.features = job->features;
   const auto& bvh = scene->device_bvh[single ? 1 : 0];
   fill_hits(scene, bvh.get(), hit_ints, stride_seen, in.count, &out);
   return out;
@@ -134,7 +135,7 @@ TraceOutput trace(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params
 namespace arcus::render {
 
 DevicePaths record_paths(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params p, const TraceInput& in,
-                         uint32_t capacity_hint, arcus_job_stats* stats) {
+                         uint32_t capacity_hint, arcus_job_stats* stats, arcus_features* features) {
   use_bounds(scene, &p);
   p.record_path = 1;
   p.path_capacity = std::max<uint32_t>(capacity_hint, 2);
@@ -161,6 +162,7 @@ DevicePaths record_paths(arcus_context_t* ctx, RenderScene* scene, arcus_advance
       stats->total_seconds += job->stats.total_seconds;
       stats->kernel_seconds += job->stats.kernel_seconds;
       stats->launches += job->stats.launches;
+      *features |= job->features;
     }
     if (status == ARCUS_ERROR_PATH_OVERFLOW && attempt == 0) {
       uint64_t longest = 0;
@@ -224,6 +226,7 @@ TraceOutput walk_in(arcus_context_t* ctx, RenderScene* scene, const arcus_advanc
   GeometryArgs geometry;
   geometry.set(ctx, scene, single, kernel, 13, stride, count, predictions);
   TraceOutput out;
+  out.features = plan.features | ARCUS_FEATURE_GEOMETRY;
   out.stats.kernel_seconds = kernel.run(ctx, items);
   out.stats.launches = 1;
 

@@ -32,6 +32,7 @@ struct TraceOutput {
   std::vector<int32_t> hit_step;  // the step that hit, -1 for none
   std::vector<int32_t> tests;
   arcus_job_stats stats{};
+  arcus_features features = 0;  // what the programs it ran compiled
 };
 
 // Traces `in` through the scene with `params` (the box is the scene's bounds): each ray
@@ -56,7 +57,7 @@ struct DevicePaths {
 // the paths a trace follows, which walk() then intersects.  `capacity_hint`: points per
 // path to try first (a path that needs more is recorded again with room for it).
 DevicePaths record_paths(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params params, const TraceInput& in,
-                         uint32_t capacity_hint, arcus_job_stats* stats);
+                         uint32_t capacity_hint, arcus_job_stats* stats, arcus_features* features);
 
 // A walked ray follows recorded path a; or, with b >= 0, the path interpolated between
 // paths a and b at equal arc length along a's net points, as far as both reach
