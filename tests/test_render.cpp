@@ -240,7 +240,10 @@ TEST_F(Render, APathCachedSecondFrameEqualsARecomputedOne) {
   const Rendered cached = render(scene, ARCUS_TECHNIQUE_PATH_CACHE, 2);
   arcus_scene_release(scene);
   EXPECT_EQ(cached.stats.rays_cached, cached.objects.size());
-  EXPECT_EQ(cached.stats.rays_traced, 0u);
+  // Every cached path leads to its own hit again, but for the few the first frame
+  // recorded only in part (room for 99 % of them), which are traced again.
+  EXPECT_EQ(cached.stats.rays_traced, cached.stats.rays_unresolved);
+  EXPECT_LT(cached.stats.rays_unresolved, cached.objects.size() / 100);
   EXPECT_GT(cached.stats.cache_bytes, 0u);
   const Difference d = compare(full, cached);
   EXPECT_EQ(d.other_primitive, 0u);
@@ -257,8 +260,11 @@ TEST_F(Render, SymmetryGivesTheFullComputationsHitsToRounding) {
   const Rendered full = render(scene, 0);
   const Rendered half = render(scene, ARCUS_TECHNIQUE_SYMMETRY);
   arcus_scene_release(scene);
-  EXPECT_EQ(half.stats.rays_traced, half.objects.size() / 2);
+  // Paths end at their hits; a mirrored ray that passes where its original hit (the
+  // shuttle is not symmetric) walks off the end and is traced instead.
+  EXPECT_EQ(half.stats.rays_traced, half.objects.size() / 2 + half.stats.rays_unresolved);
   EXPECT_EQ(half.stats.rays_mirrored, half.objects.size() / 2);
+  EXPECT_LT(half.stats.rays_unresolved, half.objects.size() / 50);
   const Difference d = compare(full, half);
   EXPECT_EQ(d.other_primitive, 0u);
   EXPECT_LT(d.max, 1e-9);

@@ -90,6 +90,7 @@ typedef struct arcus_render_stats {
   uint64_t rays_mirrored;     /* SYMMETRY */
   uint64_t rays_interpolated; /* UNDERSAMPLE */
   uint64_t rays_cached;       /* PATH_CACHE: paths reused from the last frame */
+  uint64_t rays_unresolved;   /* walked past a path cut short by a hit: traced instead */
   uint64_t steps;             /* integrator steps of primary rays */
   uint64_t tests;             /* intersection tests of primary rays */
   uint64_t shadow_rays;

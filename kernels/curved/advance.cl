@@ -56,11 +56,12 @@ ARCUS_INLINE void record_point(__global REAL* path, int capacity, size_t first_r
   }
   *count = VLOAD(0, cs);
 }
-#define RECORD(g, moved) \
-  record_point(path, job.path_capacity, (first_vector + (g)) * ARCUS_LANES, y[g], s[g], (moved), &points[g])
+#define RECORD_AT(g, yv, sv, moved) \
+  record_point(path, job.path_capacity, (first_vector + (g)) * ARCUS_LANES, (yv), (sv), (moved), &points[g])
 #else
-#define RECORD(g, moved)
+#define RECORD_AT(g, yv, sv, moved)
 #endif
+#define RECORD(g, moved) RECORD_AT(g, y[g], s[g], moved)
 
 #ifdef ARCUS_USE_DISPERSION
 #define MED(g) (&med[g])
@@ -266,13 +267,15 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
       if (ANY(left)) cross_box(MED(g), &job, y_old[g], comp_old[g], s_old[g], h_taken[g], &y[g], &comp[g], &s[g], left);
       status[g] = SEL(status[g], (IDXV)ARCUS_STATUS_LEFT_BOX, left);
 #endif
+      /* Recorded before the geometry hook moves a hit's end onto its surface: a stored
+       * path keeps the step the integrator took, so walking it finds the same hit. */
+      RECORD(g, accepted[g]);
 #ifdef ARCUS_USE_GEOMETRY
       if (ANY(accepted[g]))
         geometry_step(MED(g), &job, &geo, nodes, tris, shapes, y_old[g], comp_old[g], s_old[g], &y[g], &comp[g], &s[g],
                       steps[g], accepted[g], accepted[g] & (status[g] != (IDXV)ARCUS_STATUS_ACTIVE), 0, &hs[g],
                       &chunk[g], &status[g]);
 #endif
-      RECORD(g, accepted[g]);
     }
   }
 #else
@@ -309,6 +312,7 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
       if (ANY(left))
         cross_box(MED(g), &job, y[g], comp[g], s[g], (REALV)hk, &y_new[g], &comp_new[g], &s_new, left);
       status[g] = SEL(status[g], (IDXV)ARCUS_STATUS_LEFT_BOX, left);
+      RECORD_AT(g, y_new[g], s_new, active); /* before the geometry hook: see above */
 #ifdef ARCUS_USE_GEOMETRY
       const MASKV last_step = (IDXV)(k + 1 >= job.fixed_steps ? -1 : 0); /* the host marks these rays DONE */
       if (ANY(active))
@@ -320,7 +324,6 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
       comp[g] = ray_select(comp[g], comp_new[g], active);
       s[g] = SEL(s[g], s_new, active);
       steps[g] += ONE_IF(active);
-      RECORD(g, active);
 #else
       /* The least n of the step: a ray must not enter n <= 0 (checked after the loop). */
       n_min[g] = fmin(n_min[g], n0[g]);

@@ -9,7 +9,9 @@
 #endif
 
 /* Internal ray status codes beyond advance_desc.h's (render jobs only). */
-#define ARCUS_STATUS_HIT 7   /* stopped on a primitive: the end state is the hit        */
+#define ARCUS_STATUS_HIT 7        /* stopped on a primitive: the end state is the hit   */
+#define ARCUS_STATUS_UNRESOLVED 8 /* a walk reached the end of a path that ended on a
+                                   * hit, without a hit of its own: trace it instead  */
 
 /* Kinds of hit. */
 #define ARCUS_HIT_NONE 0

@@ -149,8 +149,11 @@ __kernel void arcus_walk(__global const REAL* paths, const int capacity, __globa
       longest = max(longest, w->points);
     }
     count[g] = VLOAD(0, cs);
-    /* A path of one point (or none) has no chord: it ends as it was recorded. */
-    status[g] = SEL(VLOAD(0, es), (IDXV)ARCUS_STATUS_ACTIVE, count[g] > (IDXV)1);
+    /* A path of one point (or none) has no chord: it ends as it was recorded (one that
+     * hit at once stops short of where a walked ray goes). */
+    IDXV start = VLOAD(0, es);
+    start = SEL(start, (IDXV)ARCUS_STATUS_UNRESOLVED, start == (IDXV)ARCUS_STATUS_HIT);
+    status[g] = SEL(start, (IDXV)ARCUS_STATUS_ACTIVE, count[g] > (IDXV)1);
     y[g].x = y[g].y = y[g].z = y[g].vx = y[g].vy = y[g].vz = (REALV)RC(0);
     s[g] = (REALV)RC(0);
     walk_load(paths, capacity, counts, lanes[g], 0, plane, &y[g], &s[g]);
@@ -179,7 +182,8 @@ __kernel void arcus_walk(__global const REAL* paths, const int capacity, __globa
   }
   FOR_GROUPS(g) {
     const size_t v = first_vector + g;
-    /* Walked to the end without a hit: the path's own ending. */
+    /* Walked to the end without a hit: the path's own ending, unless that was a hit
+     * (the path stops short of where this ray goes). */
     IDX es[ARCUS_LANES];
     for (int l = 0; l < ARCUS_LANES; ++l) {
       const size_t r = v * ARCUS_LANES + l;
@@ -189,7 +193,9 @@ __kernel void arcus_walk(__global const REAL* paths, const int capacity, __globa
                   ? end_status[w->b]
                   : end_status[w->a];
     }
-    status[g] = SEL(status[g], VLOAD(0, es), status[g] == (IDXV)ARCUS_STATUS_ACTIVE);
+    IDXV ending = VLOAD(0, es);
+    ending = SEL(ending, (IDXV)ARCUS_STATUS_UNRESOLVED, ending == (IDXV)ARCUS_STATUS_HIT);
+    status[g] = SEL(status[g], ending, status[g] == (IDXV)ARCUS_STATUS_ACTIVE);
     VSTORE(y[g].x, v, out);
     VSTORE(y[g].y, v, out + stride);
     VSTORE(y[g].z, v, out + 2 * stride);

@@ -264,7 +264,11 @@ void shade(arcus_context_t* ctx, arcus_renderer_s* r, const Primary& prim, Rende
     // Curved photon mapping (thesis §4.3.4, render/photons.h): the photons' irradiance
     // replaces the direct light of shadow rays.
     PhotonStats ps;
-    const auto map = shoot_photons(ctx, r->scene, r->params, s.desc.photons.count, /*seed=*/1, &ps);
+    if (!r->photon_cache) r->photon_cache = std::make_unique<PhotonCache>();
+    PhotonOptions po;
+    po.techniques = r->techniques;  // the renderer's techniques apply to the photons' first generation too
+    po.cache = r->photon_cache.get();
+    const auto map = shoot_photons(ctx, r->scene, r->params, s.desc.photons.count, /*seed=*/1, &ps, po);
     job->render_stats.photon_seconds = ps.seconds;
     job->render_stats.photons = ps.stored;
     std::vector<double> points, normals;
@@ -374,9 +378,11 @@ std::string asymmetry(const arcus_renderer_s& r) {
 }
 
 // Every pixel's path for the path-based techniques: the traced pixels' paths
-// integrated and recorded, the others mirrored (symmetry) or interpolated between
-// their traced neighbours (undersampling) as they are walked.
+// integrated and recorded up to their hits (their results stored in *prim at once),
+// the others mirrored (symmetry) or interpolated between their traced neighbours
+// (undersampling) as they are walked.  `traced_pixels` lists the traced ones.
 PathFrame pixel_paths(arcus_context_t* ctx, arcus_renderer_s* r, const Frame& f, uint32_t capacity_hint,
+                      const std::vector<int32_t>* previous, Primary* prim, std::vector<char>* traced_pixels,
                       arcus_render_stats* st) {
   const CameraDesc& c = r->camera;
   const bool symmetric = r->techniques & ARCUS_TECHNIQUE_SYMMETRY;
@@ -388,22 +394,26 @@ PathFrame pixel_paths(arcus_context_t* ctx, arcus_renderer_s* r, const Frame& f,
   auto traced = [&](uint32_t i, uint32_t j) { return !under || (i + j) % 2 == 0 || i == 0 || i + 1 == half; };
   Batch b;
   std::vector<int32_t> slot(static_cast<size_t>(c.width) * c.height, -1);
+  traced_pixels->assign(slot.size(), 0);
   for (uint32_t j = 0; j < c.height; ++j)
     for (uint32_t i = 0; i < half; ++i)
       if (traced(i, j)) {
         const size_t p = static_cast<size_t>(j) * c.width + i;
         slot[p] = static_cast<int32_t>(b.size());
-        b.add(f.origin, pixel_direction(f, c, i, j), p, -1);
+        (*traced_pixels)[p] = 1;
+        b.add(f.origin, pixel_direction(f, c, i, j), p, previous ? (*previous)[p] : -1);
       }
   TraceInput in;
   in.count = b.size();
   in.origins = b.origins.data();
   in.directions = b.directions.data();
-  arcus_job_stats js{};
+  in.predictions = previous ? b.predictions.data() : nullptr;
   PathFrame frame;
-  frame.paths = record_paths(ctx, r->scene, r->params, in, capacity_hint, &js, &frame.features);
-  st->trace_seconds += js.total_seconds;
+  const TraceOutput t = record_paths(ctx, r->scene, r->params, in, capacity_hint, &frame.paths);
+  frame.features = t.features;
+  st->trace_seconds += t.stats.total_seconds;
   st->rays_traced += b.size();
+  store(t, b.pixels, prim);
   // The mirror: the plane through the camera normal to its right axis.
   for (int a = 0; a < 3; ++a) frame.plane.normal[a] = (&f.right.x)[a];
   frame.plane.offset = dot(f.right, f.origin);
@@ -528,56 +538,82 @@ std::string technique_problem(const arcus_renderer_s& r, uint32_t techniques) {
 
 namespace {
 
-// The primary rays of a frame through stored paths: every pixel's path (from the cache,
-// or integrated, mirrored and interpolated now), walked against the scene, smart step
-// selection predicting from the last frame or from a coarse first walk.
+// The primary rays of a frame through stored paths: the cached paths walked again, or
+// the traced pixels' paths recorded now and the other pixels' walked along mirrored
+// and interpolated ones; rays whose walk is unresolved are traced.  Smart step
+// selection predicts from the last frame, or from the pixels a walked ray derives from.
 void walk_frame(arcus_context_t* ctx, arcus_renderer_s* r, const Frame& f, Primary* prim, arcus_render_stats* st) {
   const CameraDesc& c = r->camera;
   const size_t n = static_cast<size_t>(c.width) * c.height;
   const bool cache = r->techniques & ARCUS_TECHNIQUE_PATH_CACHE;
   const bool smart = r->techniques & ARCUS_TECHNIQUE_SMART_STEP;
+  const bool temporal = smart && r->previous_hit_step.size() == n;
+  const std::vector<int32_t>* previous = temporal ? &r->previous_hit_step : nullptr;
   std::unique_ptr<PathFrame> fresh;
   const PathFrame* paths = nullptr;
+  std::vector<char> done(n, 0);
   if (cache && r->cached_paths && r->cached_paths->rays.size() == n) {
     paths = r->cached_paths.get();
     st->rays_cached = n;
   } else {
-    // Room for the longest path the last frame saw, else a first guess.
+    // Room for all but the longest few paths the last frame saw (else a first guess):
+    // the memory is count × capacity, and a path cut short only sends the few rays
+    // that walk past its end to be traced.
     uint32_t hint = 64;
     if (r->previous_steps > 0) hint = static_cast<uint32_t>(std::min<uint64_t>(r->previous_steps + 2, 1u << 20));
-    fresh = std::make_unique<PathFrame>(pixel_paths(ctx, r, f, hint, st));
+    fresh = std::make_unique<PathFrame>(pixel_paths(ctx, r, f, hint, previous, prim, &done, st));
     paths = fresh.get();
   }
   prim->features |= paths->features;
   const auto walk_start = Clock::now();
-  const bool temporal = smart && r->previous_hit_step.size() == n;
-  std::vector<size_t> first, rest;
-  for (uint32_t j = 0; j < c.height; ++j)
-    for (uint32_t i = 0; i < c.width; ++i) {
-      const size_t p = static_cast<size_t>(j) * c.width + i;
-      (!smart || temporal || (i % kCoarse == 0 && j % kCoarse == 0) ? first : rest).push_back(p);
-    }
-  auto run = [&](const std::vector<size_t>& pixels, const std::vector<int32_t>* predictions) {
+  auto walk_pixels = [&](const std::vector<size_t>& pixels, const std::vector<int32_t>& predictions) {
+    if (pixels.empty()) return;
     std::vector<WalkRay> rays;
     rays.reserve(pixels.size());
     for (size_t p : pixels) rays.push_back(paths->rays[p]);
-    const TraceOutput t = walk(ctx, r->scene, r->params, paths->paths, rays, paths->plane,
-                               predictions ? predictions->data() : nullptr);
+    const TraceOutput t =
+        walk(ctx, r->scene, r->params, paths->paths, rays, paths->plane, smart ? predictions.data() : nullptr);
     store(t, pixels, prim);
     prim->features |= t.features;
   };
-  std::vector<int32_t> predicted;
-  if (temporal)
-    for (size_t p : first) predicted.push_back(r->previous_hit_step[p]);
-  run(first, temporal ? &predicted : nullptr);
-  if (!rest.empty()) {
-    predicted.clear();
-    for (size_t p : rest)
-      predicted.push_back(spatial_prediction(*prim, c, static_cast<uint32_t>(p % c.width),
-                                             static_cast<uint32_t>(p / c.width)));
-    run(rest, &predicted);
+  // The left half first: a mirrored pixel predicts its mirror image's end step.
+  for (int half = 0; half < 2; ++half) {
+    std::vector<size_t> pixels;
+    std::vector<int32_t> predictions;
+    for (uint32_t j = 0; j < c.height; ++j)
+      for (uint32_t i = 0; i < c.width; ++i) {
+        const size_t p = static_cast<size_t>(j) * c.width + i;
+        const WalkRay& w = paths->rays[p];
+        if (done[p] || (w.mirror != 0) != (half == 1)) continue;
+        int32_t predicted = -1;
+        if (previous) {
+          predicted = (*previous)[p];
+        } else if (w.mirror) {
+          predicted = prim->end_step[static_cast<size_t>(j) * c.width + (c.width - 1 - i)];
+        } else if (w.b >= 0) {
+          const int32_t a = prim->end_step[p - 1], b = prim->end_step[p + 1];
+          predicted = a < 0 || b < 0 ? -1 : std::min(a, b);
+        }
+        pixels.push_back(p);
+        predictions.push_back(predicted);
+      }
+    walk_pixels(pixels, predictions);
   }
   st->walk_seconds += since(walk_start);
+  // Walks that ran past the end of a path cut short by a hit: traced from the start.
+  Batch unresolved;
+  for (uint32_t j = 0; j < c.height; ++j)
+    for (uint32_t i = 0; i < c.width; ++i) {
+      const size_t p = static_cast<size_t>(j) * c.width + i;
+      if (prim->status[p] == ARCUS_STATUS_UNRESOLVED) unresolved.add(f.origin, pixel_direction(f, c, i, j), p, -1);
+    }
+  if (unresolved.size()) {
+    st->rays_unresolved += unresolved.size();
+    std::vector<int32_t> walked_tests;
+    for (size_t p : unresolved.pixels) walked_tests.push_back(prim->tests[p]);
+    trace_batch(ctx, r, unresolved, false, NAN, prim, st);
+    for (size_t k = 0; k < unresolved.size(); ++k) prim->tests[unresolved.pixels[k]] += walked_tests[k];
+  }
   if (cache) {
     if (fresh) r->cached_paths = std::move(fresh);
     st->cache_bytes = r->cached_paths->paths.bytes() + r->cached_paths->rays.size() * sizeof(WalkRay);
@@ -663,8 +699,14 @@ std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_call
     st.tests += static_cast<uint64_t>(prim.tests[p]);
   }
   r->previous_hit_step = prim.end_step;
-  r->previous_steps = 0;
-  for (uint64_t k : prim.steps) r->previous_steps = std::max(r->previous_steps, k);
+  // The 99th percentile of the steps a primary ray took: room enough in the next
+  // frame's recorded paths for all but a few.
+  std::vector<uint64_t> steps = prim.steps;
+  if (!steps.empty()) {
+    const size_t at = steps.size() * 99 / 100;
+    std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(at), steps.end());
+    r->previous_steps = steps[at];
+  }
   job->features |= prim.features;
   st.total_seconds = since(start);
   job->stats.total_seconds = st.total_seconds;

@@ -7,6 +7,7 @@
 
 #include "arcus/arcus_render.h"
 #include "core/job.h"
+#include "render/photons.h"
 #include "render/scene.h"
 #include "render/trace.h"
 
@@ -33,13 +34,17 @@ struct arcus_renderer_s : arcus::Handle {
   // step (smart step selection's temporal prediction) and, with PATH_CACHE, every
   // pixel's path (thesis §4.3.2.4; on the host, its size reported as cache_bytes).
   std::vector<int32_t> previous_hit_step;
-  uint64_t previous_steps = 0;  // the most steps a primary ray took
+  uint64_t previous_steps = 0;  // the 99th percentile of the primary rays' steps
   std::unique_ptr<arcus::render::PathFrame> cached_paths;
+  // The photons' first generation and its end steps (render/photons.h: PATH_CACHE,
+  // SMART_STEP's temporal prediction); it checks its own key, and is dropped with the frames.
+  std::unique_ptr<arcus::render::PhotonCache> photon_cache;
 
   void reset_frames() {
     previous_hit_step.clear();
     previous_steps = 0;
     cached_paths.reset();
+    photon_cache.reset();
   }
 };
 

@@ -98,17 +98,26 @@ std::unique_ptr<curved::AdvanceJob> run_advance(arcus_context_t* ctx, RenderScen
 
 }  // namespace
 
-TraceOutput trace(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params p, const TraceInput& in) {
+namespace {
+
+// trace() and record_paths(): the advance with the per-step hook; with `paths`, every
+// net point of every ray is recorded too (up to its hit), at most `capacity` a ray.  A
+// longer path keeps its first points and is marked as ending on a hit (which it did
+// not reach): a walk along it that finds nothing is then traced instead.
+TraceOutput run_trace(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params p, const TraceInput& in,
+                      DevicePaths* paths, uint32_t capacity_hint) {
   const bool single = p.precision == ARCUS_PRECISION_FLOAT;
   scene->upload(ctx, single);
   use_bounds(scene, &p);
-  p.record_path = 0;
+  p.record_path = paths ? 1 : 0;
+  p.path_capacity = paths ? std::max<uint32_t>(capacity_hint, 2) : 0;
   GeometryArgs geometry;
   std::vector<int32_t> hit_ints;
   size_t stride_seen = 0;
   curved::AdvanceExtension ext;
-  ext.features = ARCUS_FEATURE_GEOMETRY;
+  ext.features = ARCUS_FEATURE_GEOMETRY | (paths ? ARCUS_FEATURE_RECORD_STATE : 0);
   ext.source = &trace_source();
+  ext.record_components = DevicePaths::kReals;
   ext.set_args = [&](KernelCall& kernel, unsigned arg, size_t stride, bool is_single) {
     geometry.set(ctx, scene, is_single, kernel, arg, stride, in.count, in.predictions);
   };
@@ -116,42 +125,13 @@ TraceOutput trace(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params
     stride_seen = stride;
     hit_ints = geometry.read(ctx, stride);
   };
-  const auto job = run_advance(ctx, scene, p, in, ext);
+  if (paths)
+    ext.take_paths = [&](std::unique_ptr<DeviceBuffer> b, uint32_t capacity) {
+      paths->points = std::move(b);
+      paths->capacity = capacity;
+    };
   TraceOutput out;
-  out.positions = std::move(job->positions);
-  out.directions = std::move(job->directions);
-  out.lengths = std::move(job->lengths);
-  out.steps = std::move(job->steps);
-  out.status = std::move(job->status);
-  out.stats = job->stats;
-  out.features = job->features;
-  const auto& bvh = scene->device_bvh[single ? 1 : 0];
-  fill_hits(scene, bvh.get(), hit_ints, stride_seen, in.count, &out);
-  return out;
-}
-
-}  // namespace arcus::render
-
-namespace arcus::render {
-
-DevicePaths record_paths(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params p, const TraceInput& in,
-                         uint32_t capacity_hint, arcus_job_stats* stats, arcus_features* features) {
-  use_bounds(scene, &p);
-  p.record_path = 1;
-  p.path_capacity = std::max<uint32_t>(capacity_hint, 2);
-  DevicePaths paths;
-  curved::AdvanceExtension ext;
-  ext.features = ARCUS_FEATURE_RECORD_STATE;
-  ext.source = &trace_source();
-  ext.record_components = DevicePaths::kReals;
-  ext.take_paths = [&](std::unique_ptr<DeviceBuffer> b, uint32_t capacity) {
-    paths.points = std::move(b);
-    paths.capacity = capacity;
-  };
-  *stats = arcus_job_stats{};
-  // A first try with the hint; paths that need more room are known after it, so at
-  // most one more run records them all.
-  for (int attempt = 0; attempt < 2; ++attempt) {
+  {
     arcus_job_t* raw = nullptr;
     std::string message;
     const arcus_status status = curved::advance(ctx, scene->field, p, in.count, in.origins, in.directions,
@@ -159,26 +139,41 @@ DevicePaths record_paths(arcus_context_t* ctx, RenderScene* scene, arcus_advance
     std::unique_ptr<curved::AdvanceJob> job(static_cast<curved::AdvanceJob*>(raw));
     if (job) job->owner()->drop();  // the job's reference to its context: the caller holds others
     if (job) {
-      stats->total_seconds += job->stats.total_seconds;
-      stats->kernel_seconds += job->stats.kernel_seconds;
-      stats->launches += job->stats.launches;
-      *features |= job->features;
+      out.stats.total_seconds += job->stats.total_seconds;
+      out.stats.kernel_seconds += job->stats.kernel_seconds;
+      out.stats.build_seconds += job->stats.build_seconds;
+      out.stats.launches += job->stats.launches;
+      out.features |= job->features;
     }
-    if (status == ARCUS_ERROR_PATH_OVERFLOW && attempt == 0) {
-      uint64_t longest = 0;
-      for (uint64_t n : job->path_needed) longest = std::max(longest, n);
-      require(longest < (uint64_t(1) << 31), "a path needs more than 2^31 points");
-      p.path_capacity = static_cast<uint32_t>(longest);
-      continue;
+    if (status != ARCUS_SUCCESS && !(paths && status == ARCUS_ERROR_PATH_OVERFLOW)) fail(status, message);
+    out.positions = std::move(job->positions);
+    out.directions = std::move(job->directions);
+    out.lengths = std::move(job->lengths);
+    out.steps = std::move(job->steps);
+    out.status = std::move(job->status);
+    const auto& bvh = scene->device_bvh[single ? 1 : 0];
+    fill_hits(scene, bvh.get(), hit_ints, stride_seen, in.count, &out);
+    if (paths) {
+      paths->counts.resize(in.count);
+      paths->end_status = out.status;
+      for (size_t r = 0; r < in.count; ++r) {
+        paths->counts[r] = static_cast<int32_t>(std::min<uint64_t>(job->path_needed[r], paths->capacity));
+        if (job->path_needed[r] > paths->capacity) paths->end_status[r] = ARCUS_STATUS_HIT;  // cut short
+      }
     }
-    if (status != ARCUS_SUCCESS) fail(status, message);
-    paths.counts.resize(in.count);
-    paths.end_status = job->status;
-    for (size_t r = 0; r < in.count; ++r)
-      paths.counts[r] = static_cast<int32_t>(std::min<uint64_t>(job->path_needed[r], paths.capacity));
-    return paths;
+    return out;
   }
-  fail(ARCUS_ERROR_PATH_OVERFLOW, "paths kept growing while being recorded");
+}
+
+}  // namespace
+
+TraceOutput trace(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params p, const TraceInput& in) {
+  return run_trace(ctx, scene, p, in, nullptr, 0);
+}
+
+TraceOutput record_paths(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params p, const TraceInput& in,
+                         uint32_t capacity_hint, DevicePaths* paths) {
+  return run_trace(ctx, scene, p, in, paths, capacity_hint);
 }
 
 namespace {

@@ -52,12 +52,12 @@ struct DevicePaths {
   size_t bytes() const { return points ? points->bytes() : 0; }
 };
 
-// Integrates the rays' whole paths through the scene's bounds, ignoring its
-// primitives, and records every net point (symmetry, undersampling, the path cache):
-// the paths a trace follows, which walk() then intersects.  `capacity_hint`: points per
-// path to try first (a path that needs more is recorded again with room for it).
-DevicePaths record_paths(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params params, const TraceInput& in,
-                         uint32_t capacity_hint, arcus_job_stats* stats, arcus_features* features);
+// trace(), recording every ray's net points up to its hit as well (symmetry,
+// undersampling and the path cache walk them again): the traced rays' results, and
+// the paths in *paths.  `capacity`: points kept per path; a longer path keeps its
+// first ones and counts as cut short (walks that run past its end are traced).
+TraceOutput record_paths(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params params, const TraceInput& in,
+                         uint32_t capacity, DevicePaths* paths);
 
 // A walked ray follows recorded path a; or, with b >= 0, the path interpolated between
 // paths a and b at equal arc length along a's net points, as far as both reach
@@ -73,7 +73,10 @@ struct MirrorPlane {
 };
 
 // Intersects the walked rays' paths chord by chord, as trace() does while integrating:
-// a recorded path gives the trace's hit exactly.
+// a recorded path gives the trace's hit exactly.  A walked ray that comes to the end of
+// a path which ended on a hit without hitting anything itself (a mirrored or
+// interpolated path, or a cached one after the scene moved) is UNRESOLVED: the path
+// stops short of where this ray goes, so it must be traced.
 TraceOutput walk(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params params, const DevicePaths& paths,
                  const std::vector<WalkRay>& rays, const MirrorPlane& plane, const int32_t* predictions);
 

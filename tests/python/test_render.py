@@ -57,3 +57,13 @@ def test_every_technique_gives_the_straight_image(tmp_path):
     for techniques in (["smart_step"], ["symmetry"], ["path_cache"], ["smart_step", "symmetry", "path_cache"]):
         result = arcus.render(small_scene(tmp_path), techniques=techniques, frames=2)
         assert (result.objects == plain.objects).all(), techniques
+
+
+def test_a_scene_built_in_python_renders_like_its_file(tmp_path):
+    import json
+    path = small_scene(tmp_path)
+    from_file = arcus.render(path)
+    from_dict = arcus.render(json.loads(path.read_text()), base_dir=tmp_path)
+    assert (from_dict.objects == from_file.objects).all()
+    assert np.array_equal(from_dict.image, from_file.image)
+    assert not list(tmp_path.glob("tmp*.json"))  # the temporary scene file is gone

@@ -92,8 +92,9 @@ __all__ = [
 ]
 
 
-def render(scene, techniques=None, frames=1, exr=None, png=None, device=DEVICE_DEFAULT):
-    """Renders the render scene file ``scene`` on a new context of ``device``: see
-    :meth:`Context.render`.  Returns a :class:`RenderResult` (image as numpy)."""
+def render(scene, techniques=None, frames=1, exr=None, png=None, device=DEVICE_DEFAULT, base_dir="."):
+    """Renders a render scene (a file, or a dict built in Python) on a new context of
+    ``device``: see :meth:`Context.render`.  Returns a :class:`RenderResult` (image as
+    numpy, hits, figures)."""
     with Context(device) as ctx:
-        return ctx.render(scene, techniques=techniques, frames=frames, exr=exr, png=png)
+        return ctx.render(scene, techniques=techniques, frames=frames, exr=exr, png=png, base_dir=base_dir)

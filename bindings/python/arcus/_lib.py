@@ -114,7 +114,7 @@ class RenderStatsStruct(ctypes.Structure):
     _fields_ = [(name, c_double) for name in
                 ("trace_seconds", "walk_seconds", "photon_seconds", "shade_seconds", "total_seconds")] + [
         (name, c_uint64) for name in
-        ("pixels", "rays_traced", "rays_mirrored", "rays_interpolated", "rays_cached", "steps",
+        ("pixels", "rays_traced", "rays_mirrored", "rays_interpolated", "rays_cached", "rays_unresolved", "steps",
          "tests", "shadow_rays", "photons", "cache_bytes")] + [("techniques", c_uint32)]
 
 

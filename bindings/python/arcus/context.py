@@ -623,8 +623,10 @@ class Context:
         self._check(lib.arcus_scene_load(ctx, encoded, byref(out)))
         return Scene(self, _Handle(out, lib.arcus_scene_release))
 
-    def render(self, path, techniques=None, frames=1, exr=None, png=None):
-        """Renders the render scene at ``path`` (a scene file with a "camera").
+    def render(self, path, techniques=None, frames=1, exr=None, png=None, base_dir="."):
+        """Renders a render scene: ``path`` names a scene file with a "camera", or is a
+        dict of the same schema built in Python (its relative file names are read
+        against ``base_dir``, the current directory by default).
 
         ``techniques``: None (the scene's own), or names among "smart_step", "symmetry",
         "undersample", "path_cache"; ``frames``: frames rendered with the camera at rest
@@ -633,6 +635,18 @@ class Context:
         (a scene error names the file and the key).
         """
         frames = to_int(frames, "frames", 1, 100000)
+        if isinstance(path, dict):
+            # The library reads scene files: a dict goes through one, beside the files
+            # it names, and is removed afterwards.
+            import json
+            import os
+            import tempfile
+            with tempfile.NamedTemporaryFile("w", suffix=".json", dir=base_dir, delete=False) as f:
+                json.dump(path, f)
+            try:
+                return self.render(f.name, techniques, frames, exr, png)
+            finally:
+                os.unlink(f.name)
         encoded = to_path(path, "path")
         bits = None
         if techniques is not None:
