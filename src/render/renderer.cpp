@@ -31,6 +31,14 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
+// The 99th percentile of the rays' step counts (0 for none).
+uint64_t percentile99(std::vector<uint64_t> steps) {
+  if (steps.empty()) return 0;
+  const size_t at = steps.size() * 99 / 100;
+  std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(at), steps.end());
+  return steps[at];
+}
+
 struct V3 {
   double x, y, z;
 };
@@ -529,6 +537,10 @@ std::string technique_problem(const arcus_renderer_s& r, uint32_t techniques) {
   if ((techniques & path_based) && !r.scene->desc.wavelengths.empty())
     return "techniques: symmetry, undersampling and path caching work on RGB scenes; a spectral scene traces each "
            "wavelength's rays through the dispersive medium (use smart_step)";
+  if ((techniques & ARCUS_TECHNIQUE_SYMMETRY) && r.scene->desc.photons.count > 0) {
+    const std::string why = photon_asymmetry(*r.scene, nullptr);
+    if (!why.empty()) return "techniques: symmetry of the photons: " + why;
+  }
   if (techniques & ARCUS_TECHNIQUE_SYMMETRY) {
     const std::string why = asymmetry(r);
     if (!why.empty()) return "techniques: symmetry needs a medium symmetric about the camera's vertical plane: " + why;
@@ -556,11 +568,27 @@ void walk_frame(arcus_context_t* ctx, arcus_renderer_s* r, const Frame& f, Prima
     paths = r->cached_paths.get();
     st->rays_cached = n;
   } else {
-    // Room for all but the longest few paths the last frame saw (else a first guess):
-    // the memory is count × capacity, and a path cut short only sends the few rays
-    // that walk past its end to be traced.
-    uint32_t hint = 64;
-    if (r->previous_steps > 0) hint = static_cast<uint32_t>(std::min<uint64_t>(r->previous_steps + 2, 1u << 20));
+    // Room for all but the longest few paths the last frame saw (else a probe's): the
+    // memory is count × capacity, and a path cut short only sends the few rays that
+    // walk past its end to be traced.
+    uint64_t steps = r->previous_steps;
+    if (steps == 0) {
+      // No frame yet: the 99th percentile of a coarse probe's steps (every 16th pixel,
+      // traced directly), which costs a sixteenth of a frame.
+      Batch probe;
+      for (uint32_t j = 0; j < c.height; j += kCoarse)
+        for (uint32_t i = 0; i < c.width; i += kCoarse)
+          probe.add(f.origin, pixel_direction(f, c, i, j), static_cast<size_t>(j) * c.width + i, -1);
+      TraceInput in;
+      in.count = probe.size();
+      in.origins = probe.origins.data();
+      in.directions = probe.directions.data();
+      const TraceOutput t = trace(ctx, r->scene, r->params, in);
+      st->trace_seconds += t.stats.total_seconds;
+      steps = percentile99(t.steps);
+    }
+    // A quarter more: a percentile from a sample (or the last frame) is only an estimate.
+    const uint32_t hint = static_cast<uint32_t>(std::min<uint64_t>(steps + steps / 4 + 4, 1u << 20));
     fresh = std::make_unique<PathFrame>(pixel_paths(ctx, r, f, hint, previous, prim, &done, st));
     paths = fresh.get();
   }
@@ -624,6 +652,40 @@ void walk_frame(arcus_context_t* ctx, arcus_renderer_s* r, const Frame& f, Prima
 
 }  // namespace
 
+namespace {
+
+// A trace's progress as a share of the frame's: base + span · fraction.
+struct StageProgress {
+  arcus_progress_callback callback;
+  void* user;
+  double base, span;
+};
+
+int forward_progress(void* user, double fraction) {
+  const StageProgress* s = static_cast<const StageProgress*>(user);
+  return s->callback(s->user, std::min(s->base + s->span * fraction, 1.0));
+}
+
+// The renderer's integrator reports to `stage` while the frame runs (none: no callback).
+class ProgressScope {
+ public:
+  ProgressScope(arcus_renderer_s* r, StageProgress* stage) : r_(r) {
+    r_->params.progress = stage ? forward_progress : nullptr;
+    r_->params.progress_user = stage;
+  }
+  ~ProgressScope() {
+    r_->params.progress = nullptr;
+    r_->params.progress_user = nullptr;
+  }
+  ProgressScope(const ProgressScope&) = delete;
+  ProgressScope& operator=(const ProgressScope&) = delete;
+
+ private:
+  arcus_renderer_s* r_;
+};
+
+}  // namespace
+
 std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_callback progress, void* user) {
   const auto start = Clock::now();
   arcus_context_t* ctx = r->owner();
@@ -640,6 +702,10 @@ std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_call
   auto report = [&](double fraction) {
     if (progress && progress(user, fraction) != 0) fail(ARCUS_ERROR_CANCELLED, "the progress callback cancelled the frame");
   };
+  // The traces report to the frame's callback too (as the primary rays' share of the
+  // frame), so a long trace shows progress and can be cancelled within.
+  StageProgress stage{progress, user, 0.0, 0.8};
+  const ProgressScope scope(r, progress ? &stage : nullptr);
 
   const uint32_t path_based = ARCUS_TECHNIQUE_SYMMETRY | ARCUS_TECHNIQUE_UNDERSAMPLE | ARCUS_TECHNIQUE_PATH_CACHE;
   const std::vector<double>& wavelengths = r->scene->desc.wavelengths;
@@ -665,6 +731,8 @@ std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_call
       job->features |= pk.features;
       if (k == 0) prim = std::move(pk);  // the figures of the first wavelength
       report(0.8 * (k + 1) / wavelengths.size());
+      stage.base = 0.8 * (k + 1) / wavelengths.size();
+      stage.span = 0.8 / wavelengths.size();
     }
     for (size_t p = 0; p < n; ++p) {
       const auto rgb = spectral::xyz_to_linear_srgb(xyz[p]);
@@ -699,14 +767,8 @@ std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_call
     st.tests += static_cast<uint64_t>(prim.tests[p]);
   }
   r->previous_hit_step = prim.end_step;
-  // The 99th percentile of the steps a primary ray took: room enough in the next
-  // frame's recorded paths for all but a few.
-  std::vector<uint64_t> steps = prim.steps;
-  if (!steps.empty()) {
-    const size_t at = steps.size() * 99 / 100;
-    std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(at), steps.end());
-    r->previous_steps = steps[at];
-  }
+  // Room enough in the next frame's recorded paths for all but a few.
+  r->previous_steps = percentile99(prim.steps);
   job->features |= prim.features;
   st.total_seconds = since(start);
   job->stats.total_seconds = st.total_seconds;

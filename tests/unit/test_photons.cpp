@@ -17,10 +17,12 @@
 #include "core/error.h"
 #include "render/photons.h"
 #include "render/scene.h"
+#include "render/trace.h"
 #include "unit_util.h"
 
 namespace {
 
+using arcus::render::PhotonOptions;
 using arcus::render::PhotonStats;
 using arcus::render::RenderScene;
 using arcus_unit::Context;
@@ -428,6 +430,280 @@ TEST(Photons, ZeroPhotonsIsAnInvalidArgumentWithAMessageAndASceneWithoutLightsHa
   const std::vector<double> irr =
       arcus::render::photon_irradiance(ctx, *map, *d.scene, {0, 0, 0, 1, 0, 1}, {0, 1, 0, 0, 1, 0});
   EXPECT_EQ(irr, std::vector<double>(6, 0.0));
+}
+
+// ---- the techniques (thesis §4.3.4) ------------------------------------------------------
+
+const std::string kCrossRoom = ARCUS_SOURCE_DIR "/scenes/cross_room.json";
+
+void expect_same(const arcus::photon::Photons& a, const arcus::photon::Photons& b, const char* what) {
+  ASSERT_EQ(a.positions.size(), b.positions.size()) << what;
+  EXPECT_TRUE(a.positions == b.positions) << what << ": positions differ";
+  EXPECT_TRUE(a.directions == b.directions) << what << ": directions differ";
+  EXPECT_TRUE(a.powers == b.powers) << what << ": powers differ";
+}
+
+// Smart step selection only changes which steps are tested first: trace() proves the
+// steps it skips empty, so the photons are the exhaustive scan's bit for bit, with
+// fewer tests — spatially (a coarse first pass) and, in the next frame, temporally
+// (each photon's own end step in the last frame).
+TEST(PhotonTechniques, SmartStepGivesTheSamePhotonsWithFewerTests) {
+  Context ctx;
+  Loaded s;
+  load(ctx, kCrossRoom, &s);
+  ASSERT_TRUE(s.scene);
+  const uint64_t N = 60000;
+  PhotonStats plain, spatial, temporal;
+  const auto a = arcus::render::shoot_photon_list(ctx, s.scene, s.scene->desc.params, N, 5, &plain);
+  arcus::render::PhotonCache cache;
+  PhotonOptions o;
+  o.techniques = ARCUS_TECHNIQUE_SMART_STEP;
+  o.cache = &cache;
+  const auto b = arcus::render::shoot_photon_list(ctx, s.scene, s.scene->desc.params, N, 5, &spatial, o);
+  const auto c = arcus::render::shoot_photon_list(ctx, s.scene, s.scene->desc.params, N, 5, &temporal, o);
+  expect_same(a, b, "spatial smart step");
+  expect_same(a, c, "temporal smart step");
+  EXPECT_EQ(plain.traced, spatial.traced);
+  EXPECT_EQ(plain.steps, spatial.steps) << "the same integration";
+  EXPECT_LT(spatial.tests, plain.tests);
+  EXPECT_LT(temporal.tests, plain.tests);
+  // The first generation alone (what the technique predicts).
+  PhotonStats f_plain, f_smart;
+  arcus::render::first_generation(ctx, s.scene, s.scene->desc.params, N, 5, &f_plain);
+  PhotonOptions spatial_only;
+  spatial_only.techniques = ARCUS_TECHNIQUE_SMART_STEP;
+  arcus::render::first_generation(ctx, s.scene, s.scene->desc.params, N, 5, &f_smart, spatial_only);
+  EXPECT_LT(f_smart.tests, f_plain.tests);
+  std::printf("[ smart    ] first generation: %.2f tests per photon plain, %.2f smart\n",
+              double(f_plain.tests) / N, double(f_smart.tests) / N);
+  std::printf("[ smart    ] tests per traced path: %.2f plain, %.2f spatial, %.2f temporal; %.2f / %.2f / %.2f s\n",
+              double(plain.tests) / plain.traced, double(spatial.tests) / spatial.traced,
+              double(temporal.tests) / temporal.traced, plain.seconds, spatial.seconds, temporal.seconds);
+}
+
+// The path cache keeps the first generation: the next frame traces only the bounces and
+// gives the same photons; another seed (or count) is another first generation.
+TEST(PhotonTechniques, ThePathCachedSecondFrameIsTheSame) {
+  Context ctx;
+  Loaded s;
+  load(ctx, kCrossRoom, &s);
+  ASSERT_TRUE(s.scene);
+  const uint64_t N = 60000;
+  arcus::render::PhotonCache cache;
+  PhotonOptions o;
+  o.techniques = ARCUS_TECHNIQUE_PATH_CACHE;
+  o.cache = &cache;
+  PhotonStats first, second, other;
+  const auto a = arcus::render::shoot_photon_list(ctx, s.scene, s.scene->desc.params, N, 5, &first, o);
+  EXPECT_EQ(first.cached, 0u);
+  EXPECT_GT(cache.bytes(), N * 50);
+  const auto b = arcus::render::shoot_photon_list(ctx, s.scene, s.scene->desc.params, N, 5, &second, o);
+  expect_same(a, b, "path-cached frame");
+  EXPECT_EQ(second.cached, N) << "every photon enters through the window";
+  EXPECT_EQ(second.traced, first.traced - N) << "only the bounces are traced";
+  const auto c = arcus::render::shoot_photon_list(ctx, s.scene, s.scene->desc.params, N, 6, &other, o);
+  EXPECT_EQ(other.cached, 0u) << "another seed";
+  EXPECT_NE(a.positions, c.positions);
+  std::printf("[ cache    ] first frame %.2f s, cached frame %.2f s, %zu bytes held\n", first.seconds, second.seconds,
+              cache.bytes());
+}
+
+// Symmetry in the cross room (n varies with y, the sun shines in the xy plane, the
+// cross is symmetric about z = 2.5, the bounds' mid-plane): half the photons walk their
+// twin's path mirrored.  Such a photon lands on the mirror image of its twin's hit
+// (the same path, mirrored: to rounding), and where tracing it directly puts it — to
+// the integrator's tolerance, since a direct trace is another numerical solution (its
+// step control sees other coordinates).  With the integrator at rtol 1e-12 both
+// solutions are the exact path to well within 1e-9 m.
+TEST(PhotonTechniques, MirroredPhotonsLandWhereTracingThemPutsThem) {
+  Context ctx;
+  Loaded s;
+  load(ctx, kCrossRoom, &s);
+  ASSERT_TRUE(s.scene);
+  arcus::render::MirrorPlane plane;
+  ASSERT_EQ(arcus::render::photon_asymmetry(*s.scene, &plane), "");
+  EXPECT_EQ(plane.normal[2], 1.0);
+  EXPECT_EQ(plane.offset, 2.5);
+  PhotonOptions o;
+  o.techniques = ARCUS_TECHNIQUE_SYMMETRY;
+  auto check = [&](const arcus_advance_params& params, uint64_t N, double to_twin, double to_trace, const char* tag) {
+    PhotonStats st;
+    const auto g = arcus::render::first_generation(ctx, s.scene, params, N, 5, &st, o);
+    std::vector<double> origins, directions;
+    std::vector<size_t> which;
+    size_t fallback = 0;
+    double twin = 0;
+    for (size_t i = 0; i < g.how.size(); ++i) {
+      fallback += g.how[i] == arcus::render::kFirstFallback;
+      if (g.how[i] != arcus::render::kFirstMirrored) continue;
+      origins.insert(origins.end(), &g.origins[3 * i], &g.origins[3 * i] + 3);
+      directions.insert(directions.end(), &g.directions[3 * i], &g.directions[3 * i] + 3);
+      which.push_back(i);
+      // Its twin (the photon before it) is its mirror image about z = 2.5.
+      EXPECT_EQ(g.ids[i], g.ids[i - 1] + 1);
+      EXPECT_NEAR(g.origins[3 * i + 2], 5.0 - g.origins[3 * (i - 1) + 2], 1e-12);
+      twin = std::max({twin, std::fabs(g.hits[3 * i] - g.hits[3 * (i - 1)]),
+                       std::fabs(g.hits[3 * i + 1] - g.hits[3 * (i - 1) + 1]),
+                       std::fabs(g.hits[3 * i + 2] - (5.0 - g.hits[3 * (i - 1) + 2]))});
+    }
+    EXPECT_EQ(st.mirrored + fallback, N / 2) << tag << ": every twin mirrored, or traced when unresolved";
+    EXPECT_GT(st.mirrored, N / 2 - N / 1000) << tag;
+    EXPECT_LE(twin, to_twin) << tag;
+    arcus::render::TraceInput in;
+    in.count = which.size();
+    in.origins = origins.data();
+    in.directions = directions.data();
+    const auto t = arcus::render::trace(ctx, s.scene, params, in);
+    double worst = 0;
+    for (size_t k = 0; k < which.size(); ++k) {
+      ASSERT_EQ(t.status[k], g.status[which[k]]) << tag;
+      ASSERT_EQ(t.object[k], g.object[which[k]]) << tag;
+      for (int a = 0; a < 3; ++a) worst = std::max(worst, std::fabs(t.positions[3 * k + a] - g.hits[3 * which[k] + a]));
+    }
+    EXPECT_LE(worst, to_trace) << tag;
+    std::printf("[ symmetry ] %s: %llu mirrored, %zu traced after all; largest difference from the twin's mirror "
+                "image %.3g m, from tracing them %.3g m\n",
+                tag, static_cast<unsigned long long>(st.mirrored), fallback, twin, worst);
+  };
+  // The scene's integrator (rtol 1e-7 over ~6 m of path): ~1e-6 m.
+  check(s.scene->desc.params, 40000, 1e-9, 5e-6, "rtol 1e-7");
+  arcus_advance_params tight = s.scene->desc.params;
+  tight.rtol = 1e-12;
+  tight.atol = 1e-14;
+  check(tight, 4000, 1e-9, 1e-9, "rtol 1e-12");
+
+  // The whole shot.
+  PhotonStats full;
+  const auto p = arcus::render::shoot_photon_list(ctx, s.scene, s.scene->desc.params, 40000, 5, &full, o);
+  EXPECT_GT(full.mirrored, 19900u);
+  EXPECT_GT(full.stored, 40000u);
+}
+
+// Symmetry with asymmetric geometry: an obstacle on one side of the plane.  The photons
+// that hit it have mirrors whose mirrored path ends at its mirror image, where nothing
+// is: unresolved, they are traced — so every first hit is still the traced one.  And a
+// scene whose medium or light is not symmetric is refused with the reason.
+TEST(PhotonTechniques, SymmetryTracesWhatTheMirrorCannotResolveAndRefusesAsymmetricScenes) {
+  Context ctx;
+  TempDir dir;
+  write_rectangles(dir.path() + "/floor.obj", 0.0, square(0, 0, 3));
+  write_rectangles(dir.path() + "/ceiling.obj", 1.0, frame(0.5, 3));
+  write_rectangles(dir.path() + "/window.obj", 1.0, square(0, 0, 0.5));
+  write_rectangles(dir.path() + "/box.obj", 0.5, {{0.1, 0.4, 0.1, 0.4}});
+  const std::string objects = "[" + mesh_object(dir.path() + "/floor.obj", "grey") + ", " +
+                              mesh_object(dir.path() + "/ceiling.obj", "grey") + ", " +
+                              mesh_object(dir.path() + "/box.obj", "grey") + ", " +
+                              mesh_object(dir.path() + "/window.obj", "window") + "]";
+  const std::string materials = R"({"grey": {"diffuse": [0.5, 0.5, 0.5]}, "window": {"diffuse": [0, 0, 0]}})";
+  const std::string bounds = R"({"min": [-3.5, -0.5, -3.5], "max": [3.5, 1.5, 3.5]})";
+  const std::string medium = R"({"type": "linear", "n0": 1, "gradient": [0, 0.1, 0]})";
+  std::ofstream(dir.path() + "/sym.json") << scene_json(medium, materials, objects, "[0.2, 1, 0]", bounds,
+                                                         R"({"count": 1000})");
+  std::ofstream(dir.path() + "/asym.json") << scene_json(medium, materials, objects, "[0.3, 1, 0.2]", bounds,
+                                                          R"({"count": 1000})");
+  Loaded s, bad;
+  load(ctx, dir.path() + "/sym.json", &s);
+  load(ctx, dir.path() + "/asym.json", &bad);
+  ASSERT_TRUE(s.scene && bad.scene);
+  arcus::render::MirrorPlane plane;
+  ASSERT_EQ(arcus::render::photon_asymmetry(*s.scene, &plane), "");
+  EXPECT_EQ(plane.normal[2], 1.0) << "z = 0: the sun shines along x";
+  PhotonOptions o;
+  o.techniques = ARCUS_TECHNIQUE_SYMMETRY;
+  PhotonStats st;
+  const uint64_t N = 20000;
+  const auto g = arcus::render::first_generation(ctx, s.scene, s.scene->desc.params, N, 3, &st, o);
+  size_t fallback = 0;
+  for (int32_t h : g.how) fallback += h == arcus::render::kFirstFallback;
+  EXPECT_GT(fallback, 100u) << "the box's mirror image is empty";
+  EXPECT_EQ(st.mirrored + fallback, N / 2);
+  arcus::render::TraceInput in;
+  in.count = g.ids.size();
+  in.origins = g.origins.data();
+  in.directions = g.directions.data();
+  const auto t = arcus::render::trace(ctx, s.scene, s.scene->desc.params, in);
+  double worst = 0;
+  for (size_t k = 0; k < in.count; ++k) {
+    ASSERT_EQ(t.status[k], g.status[k]) << k;
+    ASSERT_EQ(t.object[k], g.object[k]) << k;
+    if (t.status[k] == ARCUS_STATUS_HIT)
+      for (int a = 0; a < 3; ++a) worst = std::max(worst, std::fabs(t.positions[3 * k + a] - g.hits[3 * k + a]));
+  }
+  EXPECT_LE(worst, 1e-9);
+
+  const std::string why = arcus::render::photon_asymmetry(*bad.scene, &plane);
+  EXPECT_NE(why.find("symmetry"), std::string::npos) << why;
+  EXPECT_NE(why.find("does not shine parallel"), std::string::npos) << why;
+  try {
+    arcus::render::shoot_photon_list(ctx, bad.scene, bad.scene->desc.params, 100, 1, &st, o);
+    ADD_FAILURE() << "symmetry was accepted for an asymmetric scene";
+  } catch (const arcus::Error& e) {
+    EXPECT_EQ(e.status(), ARCUS_ERROR_UNSUPPORTED);
+    EXPECT_EQ(std::string(e.what()), why);
+  }
+}
+
+// Undersampling (t = 2° ↔ 0.178 m across the beam, n = 3) in the cross room: the medium
+// varies with y only and every sun photon starts at y = 5 going the same way, so a
+// photon's path is its neighbours' translated and its hit on the (flat) floor an affine
+// function of its start point, which the weights of three neighbours reproduce; what
+// remains is each traced path's own error — DP45 at rtol 1e-7 over ~6 m of path, and
+// where on its last chord the crossing is placed: ~1e-6 m — and rounding.  The bound,
+// 1e-5 m mean and 1e-4 m for any photon, is that error with room (a wrong neighbour
+// set would be off by centimetres: photons 0.1 m apart land 0.1 m apart); a photon
+// whose neighbours land on different surfaces is traced.
+TEST(PhotonTechniques, UndersampledHitsAreTheTracedOnesToTheIntegratorsError) {
+  Context ctx;
+  Loaded s;
+  load(ctx, kCrossRoom, &s);
+  ASSERT_TRUE(s.scene);
+  const uint64_t N = 60000;
+  PhotonOptions o;
+  o.techniques = ARCUS_TECHNIQUE_UNDERSAMPLE;
+  o.measure_interpolation = true;
+  PhotonStats st, plain;
+  const auto p = arcus::render::shoot_photon_list(ctx, s.scene, s.scene->desc.params, N, 5, &st, o);
+  const auto q = arcus::render::shoot_photon_list(ctx, s.scene, s.scene->desc.params, N, 5, &plain);
+  EXPECT_GT(st.interpolated, N * 99 / 100) << "a few photons per 0.178 m disc are traced";
+  EXPECT_EQ(st.interpolation_measured, st.interpolated);
+  EXPECT_LT(st.interpolation_error_mean, 1e-5);
+  EXPECT_LT(st.interpolation_error_max, 1e-4);
+  EXPECT_EQ(st.traced + st.interpolated, plain.traced) << "every photon is traced or interpolated";
+  std::printf("[ under    ] %llu of %llu first hits interpolated: error mean %.3g m, max %.3g m; %.2f s (plain %.2f s)\n",
+              static_cast<unsigned long long>(st.interpolated), static_cast<unsigned long long>(N),
+              st.interpolation_error_mean, st.interpolation_error_max, st.seconds, plain.seconds);
+}
+
+// All four at once, and each alone, on the whole cross room (500 000 photons): timings
+// (run with --gtest_also_run_disabled_tests).
+TEST(PhotonTechniques, DISABLED_CrossRoomTimings) {
+  Context ctx;
+  Loaded s;
+  load(ctx, kCrossRoom, &s);
+  ASSERT_TRUE(s.scene);
+  const uint64_t N = s.scene->desc.photons.count;
+  const std::pair<const char*, uint32_t> runs[] = {
+      {"none", 0u},
+      {"smart_step", ARCUS_TECHNIQUE_SMART_STEP},
+      {"symmetry", ARCUS_TECHNIQUE_SYMMETRY},
+      {"undersample", ARCUS_TECHNIQUE_UNDERSAMPLE},
+      {"path_cache", ARCUS_TECHNIQUE_PATH_CACHE},
+      {"all", ARCUS_TECHNIQUE_ALL}};
+  for (const auto& [name, bits] : runs) {
+    arcus::render::PhotonCache cache;
+    PhotonOptions o;
+    o.techniques = bits;
+    o.cache = &cache;
+    for (int frame = 0; frame < 2; ++frame) {
+      PhotonStats st;
+      arcus::render::shoot_photon_list(ctx, s.scene, s.scene->desc.params, N, 1, &st, o);
+      std::printf("[ timing   ] %-11s frame %d: %6.2f s  stored %llu traced %llu mirrored %llu interpolated %llu "
+                  "cached %llu tests %llu steps %llu\n",
+                  name, frame + 1, st.seconds, (unsigned long long)st.stored, (unsigned long long)st.traced,
+                  (unsigned long long)st.mirrored, (unsigned long long)st.interpolated,
+                  (unsigned long long)st.cached, (unsigned long long)st.tests, (unsigned long long)st.steps);
+    }
+  }
 }
 
 }  // namespace
