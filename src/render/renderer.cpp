@@ -89,10 +89,16 @@ struct Batch {
   size_t size() const { return pixels.size(); }
 };
 
+// A predicted "end step" for a ray that hits nothing: beyond any path.
+constexpr int32_t kNoHit = std::numeric_limits<int32_t>::max();
+
 // Every pixel's primary result.
 struct Primary {
   std::vector<int32_t> status, object, primitive, kind, index, hit_step, tests;
-  std::vector<int32_t> end_step;  // the step that ended the ray (hit or left the scene), -1: failed
+  // What smart step selection predicts from: the step that hit, kNoHit for a ray that
+  // left the scene (a neighbour expecting no hit skips its tests to its end and proves
+  // the steps empty), -1 for a failed ray.
+  std::vector<int32_t> end_step;
   std::vector<double> position, direction, length;
   std::vector<double> start;  // the primary ray's initial direction
   arcus_features features = 0;  // compiled by the programs that traced or walked them
@@ -116,7 +122,7 @@ void store(const TraceOutput& t, const std::vector<size_t>& pixels, Primary* out
     out->index[p] = t.hit_index[k];
     out->hit_step[p] = t.hit_step[k];
     const bool left = t.status[k] == ARCUS_STATUS_LEFT_BOX || t.status[k] == ARCUS_STATUS_DONE;
-    out->end_step[p] = t.status[k] == ARCUS_STATUS_HIT ? t.hit_step[k] : left ? static_cast<int32_t>(t.steps[k]) : -1;
+    out->end_step[p] = t.status[k] == ARCUS_STATUS_HIT ? t.hit_step[k] : left ? kNoHit : -1;
     out->length[p] = t.lengths[k];
     for (int a = 0; a < 3; ++a) {
       out->position[3 * p + a] = t.positions[3 * k + a];
@@ -144,24 +150,25 @@ void trace_batch(arcus_context_t* ctx, arcus_renderer_s* r, const Batch& b, bool
     std::copy(&b.directions[3 * k], &b.directions[3 * k] + 3, &out->start[3 * b.pixels[k]]);
 }
 
-// Smart step selection's spatial prediction (thesis §4.3.3): a coarse grid of pixels
-// (every 4th in each direction) is traced first; every other pixel predicts the least
-// end step of the coarse pixels around it: the step that hit, or for a ray that left
-// the scene its last step (the thesis' scenes end every ray on geometry; here leaving
-// the bounds is the end a prediction can skip to, and the proof covers the skipped
-// steps either way).
-constexpr uint32_t kCoarse = 4;
+// Smart step selection's spatial prediction (thesis §4.3.3), coarse to fine: every
+// 16th pixel in each direction is traced first, then every 4th and 2nd predicting from the
+// grid around it, down to the rest.  A pixel predicts the least end step of the four
+// grid pixels around it: the step that hit, or none (kNoHit) where all four left the
+// scene without a hit (the thesis' scenes end every ray on geometry; here rays that
+// see the sky skip all their tests, and the proofs cover the skipped steps).
+constexpr uint32_t kCoarse = 4;                 // the probe of recorded paths' room
+constexpr uint32_t kSpatialStrides[] = {16, 4, 2};  // the grids traced before the rest
 
-int32_t spatial_prediction(const Primary& coarse, const CameraDesc& c, uint32_t i, uint32_t j) {
-  const uint32_t i0 = i / kCoarse * kCoarse, j0 = j / kCoarse * kCoarse;
-  const uint32_t i1 = std::min(i0 + kCoarse, (c.width - 1) / kCoarse * kCoarse);
-  const uint32_t j1 = std::min(j0 + kCoarse, (c.height - 1) / kCoarse * kCoarse);
+int32_t spatial_prediction(const Primary& grid, const CameraDesc& c, uint32_t stride, uint32_t i, uint32_t j) {
+  const uint32_t i0 = i / stride * stride, j0 = j / stride * stride;
+  const uint32_t i1 = std::min(i0 + stride, (c.width - 1) / stride * stride);
+  const uint32_t j1 = std::min(j0 + stride, (c.height - 1) / stride * stride);
   int32_t least = std::numeric_limits<int32_t>::max();
   for (uint32_t jj : {j0, j1})
     for (uint32_t ii : {i0, i1}) {
       const size_t p = static_cast<size_t>(jj) * c.width + ii;
-      if (coarse.end_step[p] < 0) return -1;
-      least = std::min(least, coarse.end_step[p]);
+      if (grid.end_step[p] < 0) return -1;
+      least = std::min(least, grid.end_step[p]);
     }
   return least;
 }
@@ -459,26 +466,32 @@ void direct_pass(arcus_context_t* ctx, arcus_renderer_s* r, const Frame& f, doub
   const bool smart = r->techniques & ARCUS_TECHNIQUE_SMART_STEP;
   const bool temporal = smart && r->previous_hit_step.size() == n && std::isnan(wavelength);
   r->cached_paths.reset();
-  Batch first, rest;
-  for (uint32_t j = 0; j < c.height; ++j)
-    for (uint32_t i = 0; i < c.width; ++i) {
-      const size_t p = static_cast<size_t>(j) * c.width + i;
-      const V3 d = pixel_direction(f, c, i, j);
-      if (!smart || temporal)
-        first.add(f.origin, d, p, temporal ? r->previous_hit_step[p] : -1);
-      else if (i % kCoarse == 0 && j % kCoarse == 0)
-        first.add(f.origin, d, p, -1);
-      else
-        rest.add(f.origin, d, p, -1);
-    }
-  trace_batch(ctx, r, first, temporal, wavelength, prim, st);
-  if (rest.size()) {
-    for (size_t k = 0; k < rest.size(); ++k) {
-      const size_t p = rest.pixels[k];
-      rest.predictions[k] = spatial_prediction(*prim, c, static_cast<uint32_t>(p % c.width),
-                                               static_cast<uint32_t>(p / c.width));
-    }
-    trace_batch(ctx, r, rest, true, wavelength, prim, st);
+  if (!smart || temporal) {
+    Batch all;
+    for (uint32_t j = 0; j < c.height; ++j)
+      for (uint32_t i = 0; i < c.width; ++i) {
+        const size_t p = static_cast<size_t>(j) * c.width + i;
+        all.add(f.origin, pixel_direction(f, c, i, j), p, temporal ? r->previous_hit_step[p] : -1);
+      }
+    trace_batch(ctx, r, all, temporal, wavelength, prim, st);
+    return;
+  }
+  // Coarse to fine: level 0 is the grid of kSpatialStrides[0], traced without
+  // prediction; each later level predicts from the one before.
+  const size_t levels = std::size(kSpatialStrides) + 1;
+  auto level_of = [&](uint32_t i, uint32_t j) {
+    for (size_t l = 0; l < std::size(kSpatialStrides); ++l)
+      if (i % kSpatialStrides[l] == 0 && j % kSpatialStrides[l] == 0) return l;
+    return levels - 1;
+  };
+  for (size_t level = 0; level < levels; ++level) {
+    Batch b;
+    for (uint32_t j = 0; j < c.height; ++j)
+      for (uint32_t i = 0; i < c.width; ++i)
+        if (level_of(i, j) == level)
+          b.add(f.origin, pixel_direction(f, c, i, j), static_cast<size_t>(j) * c.width + i,
+                level == 0 ? -1 : spatial_prediction(*prim, c, kSpatialStrides[level - 1], i, j));
+    trace_batch(ctx, r, b, level > 0, wavelength, prim, st);
   }
 }
 
