@@ -8,6 +8,7 @@
 
 #include "common/philox.h"  // kernels/common/philox.h: the same generator on host and device
 #include "core/error.h"
+#include "render/surface.h"
 #include "render/trace.h"
 
 namespace arcus::render {
@@ -15,18 +16,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-struct V3 {
-  double x, y, z;
-};
-V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-V3 operator*(double s, V3 a) { return {s * a.x, s * a.y, s * a.z}; }
-double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-double length(V3 a) { return std::sqrt(dot(a, a)); }
-V3 normalized(V3 a) { return (1.0 / length(a)) * a; }
-V3 v3(const double* p) { return {p[0], p[1], p[2]}; }
-V3 v3(const Vec3& p) { return {p[0], p[1], p[2]}; }
 
 constexpr uint64_t kMaxPhotons = uint64_t(1) << 26;  // the schema's limit ($.photons.count)
 // Generations (trace() calls): diffuse bounces plus crossings of window primitives.
@@ -54,7 +43,7 @@ struct Live {
 };
 
 // The surface at a hit: the normal facing the arriving photon and the albedo (diffuse ×
-// texture), as the renderer shades it (renderer.cpp: surface_at, albedo).
+// texture), as the renderer shades it (render/surface.h).
 struct HitSurface {
   V3 normal;
   double albedo[3];
@@ -62,57 +51,10 @@ struct HitSurface {
 };
 
 HitSurface surface_at(const RenderScene& s, int32_t object, int32_t kind, int32_t index, V3 p, V3 arriving) {
-  const ObjectDesc& o = s.desc.objects[static_cast<size_t>(object)];
-  const size_t material = static_cast<size_t>(o.material);
-  const MaterialDesc& m = s.desc.materials[material];
-  HitSurface out;
-  out.window = m.name == kWindowMaterial;
-  double u = 0, v = 0;
-  bool has_uv = false;
-  if (kind == ARCUS_HIT_TRIANGLE) {
-    const double* t = &s.triangles.triangles[9 * static_cast<size_t>(s.slot_of[static_cast<size_t>(index)])];
-    const V3 a = v3(t), e1 = v3(t + 3) - a, e2 = v3(t + 6) - a;
-    out.normal = normalized(cross(e1, e2));
-    const uint32_t mesh = s.triangles.geometry[static_cast<size_t>(index)];
-    const auto& uvs = s.mesh_uvs[mesh];
-    if (!uvs.empty() && s.textures[material].width > 0) {
-      const V3 w = p - a;
-      const double d00 = dot(e1, e1), d01 = dot(e1, e2), d11 = dot(e2, e2), d20 = dot(w, e1), d21 = dot(w, e2);
-      const double den = d00 * d11 - d01 * d01;
-      const double b1 = (d11 * d20 - d01 * d21) / den, b2 = (d00 * d21 - d01 * d20) / den, b0 = 1 - b1 - b2;
-      const size_t local = static_cast<size_t>(index) - s.triangles.mesh_first[mesh];
-      const double* c = &uvs[6 * local];
-      u = b0 * c[0] + b1 * c[2] + b2 * c[4];
-      v = b0 * c[1] + b1 * c[3] + b2 * c[5];
-      has_uv = std::isfinite(u) && std::isfinite(v);
-    }
-  } else {
-    const arcus_shape_d& sh = s.shapes[static_cast<size_t>(index)];
-    const V3 c = v3(sh.center);
-    if (sh.kind == ARCUS_SHAPE_SPHERE) {
-      out.normal = normalized(p - c);
-      u = 0.5 + std::atan2(out.normal.x, -out.normal.z) / (2 * M_PI);
-      v = std::acos(std::clamp(out.normal.y, -1.0, 1.0)) / M_PI;
-    } else {
-      out.normal = v3(sh.normal);
-      // The renderer's planar coordinates: its tangent is n × y (n × x near the poles).
-      const V3 n = out.normal;
-      const V3 t = normalized(std::fabs(n.y) < 0.9 ? cross(n, V3{0, 1, 0}) : cross(n, V3{1, 0, 0}));
-      const V3 b = cross(n, t);
-      u = dot(p - c, t);
-      v = dot(p - c, b);
-    }
-    has_uv = true;
-  }
-  if (dot(out.normal, arriving) > 0) out.normal = -1.0 * out.normal;
-  for (int c = 0; c < 3; ++c) out.albedo[c] = m.diffuse[c];
-  const image::Image& tex = s.textures[material];
-  if (tex.width > 0 && has_uv) {
-    const double su = u * m.uv_scale[0], sv = v * m.uv_scale[1];
-    const auto c = image::sample_bilinear(tex, su - std::floor(su), sv - std::floor(sv), true);
-    for (int k = 0; k < 3; ++k) out.albedo[k] *= c[k];
-  }
-  return out;
+  const size_t material = static_cast<size_t>(s.desc.objects[static_cast<size_t>(object)].material);
+  const Surface surface = render::surface_at(s, kind, index, p, arriving);
+  const V3 a = albedo(s, material, surface);
+  return {surface.normal, {a.x, a.y, a.z}, s.desc.materials[material].name == kWindowMaterial};
 }
 
 // A sun's portal: triangles with their weight area·|n·s| (their area seen from the sun).

@@ -9,6 +9,7 @@
 #include "spectral/cie.h"
 #include "spectral/srgb.h"
 #include "render/photons.h"
+#include "render/surface.h"
 #include "render/trace.h"
 
 arcus_renderer_s::arcus_renderer_s(arcus_context_t* ctx, arcus::render::RenderScene* s)
@@ -39,17 +40,6 @@ uint64_t percentile99(std::vector<uint64_t> steps) {
   return steps[at];
 }
 
-struct V3 {
-  double x, y, z;
-};
-V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-V3 operator*(double s, V3 a) { return {s * a.x, s * a.y, s * a.z}; }
-double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-V3 normalized(V3 a) { return (1.0 / std::sqrt(dot(a, a))) * a; }
-V3 v3(const double* p) { return {p[0], p[1], p[2]}; }
-V3 v3(const Vec3& p) { return {p[0], p[1], p[2]}; }
 
 // The camera's frame: forward, right and true up.
 struct Frame {
@@ -192,66 +182,6 @@ V3 sky_radiance(const RenderScene& s, V3 d) {
   return {0, 0, 0};
 }
 
-// The surface at a hit: its normal (facing the arriving ray) and texture coordinates.
-struct Surface {
-  V3 normal;
-  double u = 0, v = 0;
-  bool has_uv = false;
-};
-
-Surface surface_at(const RenderScene& s, int32_t kind, int32_t index, V3 p, V3 arriving) {
-  Surface out;
-  if (kind == ARCUS_HIT_TRIANGLE) {
-    const double* t = &s.triangles.triangles[9 * static_cast<size_t>(s.slot_of[static_cast<size_t>(index)])];
-    const V3 a = v3(t), e1 = v3(t + 3) - a, e2 = v3(t + 6) - a;
-    out.normal = normalized(cross(e1, e2));
-    const uint32_t mesh = s.triangles.geometry[static_cast<size_t>(index)];
-    const auto& uvs = s.mesh_uvs[mesh];
-    if (!uvs.empty()) {
-      // Barycentric weights of p (projected onto the triangle's plane).
-      const V3 w = p - a;
-      const double d00 = dot(e1, e1), d01 = dot(e1, e2), d11 = dot(e2, e2), d20 = dot(w, e1), d21 = dot(w, e2);
-      const double den = d00 * d11 - d01 * d01;
-      const double b1 = (d11 * d20 - d01 * d21) / den, b2 = (d00 * d21 - d01 * d20) / den, b0 = 1 - b1 - b2;
-      const size_t local = static_cast<size_t>(index) - s.triangles.mesh_first[mesh];
-      const double* c = &uvs[6 * local];
-      out.u = b0 * c[0] + b1 * c[2] + b2 * c[4];
-      out.v = b0 * c[1] + b1 * c[3] + b2 * c[5];
-      out.has_uv = true;
-    }
-  } else {
-    const arcus_shape_d& sh = s.shapes[static_cast<size_t>(index)];
-    const V3 c = v3(sh.center);
-    if (sh.kind == ARCUS_SHAPE_SPHERE) {
-      out.normal = normalized(p - c);
-      out.u = 0.5 + std::atan2(out.normal.x, -out.normal.z) / (2 * M_PI);
-      out.v = std::acos(std::clamp(out.normal.y, -1.0, 1.0)) / M_PI;
-    } else {
-      out.normal = v3(sh.normal);
-      // Planar coordinates in metres along two axes of the disc's plane.
-      const V3 n = out.normal;
-      const V3 t = normalized(std::fabs(n.y) < 0.9 ? cross(n, V3{0, 1, 0}) : cross(n, V3{1, 0, 0}));
-      const V3 b = cross(n, t);
-      out.u = dot(p - c, t);
-      out.v = dot(p - c, b);
-    }
-    out.has_uv = true;
-  }
-  if (dot(out.normal, arriving) > 0) out.normal = -1.0 * out.normal;
-  return out;
-}
-
-V3 albedo(const RenderScene& s, const MaterialDesc& m, size_t material, const Surface& surf) {
-  V3 a = v3(m.diffuse);
-  const image::Image& tex = s.textures[material];
-  if (tex.width > 0 && surf.has_uv) {
-    const double u = surf.u * m.uv_scale[0], v = surf.v * m.uv_scale[1];
-    const auto c = image::sample_bilinear(tex, u - std::floor(u), v - std::floor(v), true);
-    a = {a.x * c[0], a.y * c[1], a.z * c[2]};
-  }
-  return a;
-}
-
 // Direct light at every hit pixel: a curved shadow ray from the hit toward each light
 // (starting along the straight direction to it), traced through the medium; the
 // light counts where the ray reaches it unblocked.
@@ -268,7 +198,7 @@ void shade(arcus_context_t* ctx, arcus_renderer_s* r, const Primary& prim, Rende
       const ObjectDesc& o = s.desc.objects[static_cast<size_t>(prim.object[p])];
       const MaterialDesc& m = s.desc.materials[static_cast<size_t>(o.material)];
       surfaces[p] = surface_at(s, prim.kind[p], prim.index[p], v3(&prim.position[3 * p]), d);
-      base[p] = albedo(s, m, static_cast<size_t>(o.material), surfaces[p]);
+      base[p] = albedo(s, static_cast<size_t>(o.material), surfaces[p]);
       radiance[p] = v3(m.emission);
     } else if (prim.status[p] == ARCUS_STATUS_LEFT_BOX || prim.status[p] == ARCUS_STATUS_DONE ||
                prim.status[p] == ARCUS_STATUS_STEP_LIMIT) {
@@ -366,30 +296,11 @@ namespace {
 // every path of the image's right half is the mirror image of one of the left half.
 std::string asymmetry(const arcus_renderer_s& r) {
   const Frame f = camera_frame(r.camera);
-  const arcus_field_desc_d& d = r.scene->field->desc;
-  const double tol = 1e-12;
-  auto along = [&](const double* v) { return std::fabs(dot(v3(v), f.right)) <= tol * std::sqrt(dot(v3(v), v3(v))); };
-  auto on_plane = [&](const double* p) {
-    return std::fabs(dot(v3(p) - f.origin, f.right)) <= tol * std::max(1.0, std::sqrt(dot(v3(p), v3(p))));
-  };
-  switch (d.kind) {
-    case ARCUS_KIND_CONSTANT: return "";
-    case ARCUS_KIND_LINEAR:
-    case ARCUS_KIND_LINEAR_N2:
-      return along(d.vec) ? "" : "the medium's gradient is not parallel to the camera's vertical plane";
-    case ARCUS_KIND_LUNEBURG:
-    case ARCUS_KIND_FISHEYE:
-      return on_plane(d.origin) ? "" : "the lens's centre does not lie in the camera's vertical plane";
-    case ARCUS_KIND_ATMOSPHERE: {
-      if (d.spherical) {
-        const double centre[3] = {0, 0, 0};
-        return on_plane(centre) ? "" : "the Earth's centre does not lie in the camera's vertical plane (tilt or turn the camera)";
-      }
-      const double up[3] = {0, 1, 0};
-      return along(up) ? "" : "the camera's horizontal axis is not level (roll), so its vertical plane is not vertical";
-    }
-    default: return "a grid medium has no symmetry arcus can check";
-  }
+  MirrorPlane plane;
+  for (int a = 0; a < 3; ++a) plane.normal[a] = (&f.right.x)[a];
+  plane.offset = dot(f.right, f.origin);
+  const std::string why = medium_asymmetry(r.scene->field->desc, plane);
+  return why.empty() ? "" : why + " (the camera's vertical plane)";
 }
 
 // Every pixel's path for the path-based techniques: the traced pixels' paths
