@@ -778,13 +778,13 @@ TraceOutput first_results(arcus_context_t* ctx, RenderScene* scene, const arcus_
   // The interpolated photons (and their mirrors, from their neighbours' mirrors); those
   // whose neighbours do not share a plane are traced after all.
   for (uint32_t i : interpolated) {
-    std::vector<std::pair<uint32_t, std::vector<uint32_t>>> todo = {{i, neighbours[i]}};
+    std::vector<std::pair<uint32_t, std::vector<uint32_t>>> pending = {{i, neighbours[i]}};
     if (partner[i] >= 0) {
       std::vector<uint32_t> mirrored;
       for (uint32_t k : neighbours[i]) mirrored.push_back(static_cast<uint32_t>(partner[k]));
-      todo.push_back({static_cast<uint32_t>(partner[i]), mirrored});
+      pending.push_back({static_cast<uint32_t>(partner[i]), mirrored});
     }
-    for (const auto& [j, nb] : todo) {
+    for (const auto& [j, nb] : pending) {
       if (interpolate(s, out, nb, weights[i], &out, j)) {
         (*how)[j] = kFirstInterpolated;
         ++st->interpolated;
