@@ -251,6 +251,33 @@ TEST_F(Render, APathCachedSecondFrameEqualsARecomputedOne) {
   EXPECT_EQ(d.max, 0.0);
 }
 
+// With smart step selection a cached path's walk proves its chunks of 16 chords before
+// the predicted hit with the capsules made once, and each sun's shadow rays are walked
+// along the paths the first frame recorded for them (static lights): the second frame
+// is the recomputed one, hits and image, exactly; mirrored (symmetry) to rounding.
+TEST_F(Render, CachedPathsAndShadowRaysWalkedWithProofsGiveTheRecomputedFrame) {
+  arcus_scene_t* scene = load(small_mirage(), "cache_proofs");
+  ASSERT_NE(scene, nullptr);
+  const Rendered full = render(scene, 0);
+  const Rendered cached = render(scene, ARCUS_TECHNIQUE_SMART_STEP | ARCUS_TECHNIQUE_PATH_CACHE, 2);
+  const Rendered mirrored =
+      render(scene, ARCUS_TECHNIQUE_SMART_STEP | ARCUS_TECHNIQUE_SYMMETRY | ARCUS_TECHNIQUE_PATH_CACHE, 2);
+  arcus_scene_release(scene);
+  EXPECT_EQ(cached.stats.rays_cached, cached.objects.size());
+  EXPECT_GT(cached.stats.shadow_rays, 1000u);
+  EXPECT_LT(cached.stats.tests, full.stats.tests);
+  const Difference d = compare(full, cached);
+  EXPECT_EQ(d.other_primitive, 0u);
+  EXPECT_GT(d.hits, 1000u);
+  EXPECT_EQ(d.max, 0.0);
+  size_t other_colour = 0;
+  for (size_t k = 0; k < full.rgb.size(); ++k) other_colour += cached.rgb[k] != full.rgb[k];
+  EXPECT_EQ(other_colour, 0u);  // the shadow rays' walks block exactly the traced ones' pixels
+  const Difference m = compare(full, mirrored);
+  EXPECT_EQ(m.other_primitive, 0u);
+  EXPECT_LT(m.max, 1e-9);  // as SymmetryGivesTheFullComputationsHitsToRounding
+}
+
 // Symmetry mirrors the left half's paths: the full computation's hits to rounding.  The
 // mirrored rays start in directions that differ from the pixels' own by rounding
 // (~1e-16), which DP45 carries along a 2 km path to ~1e-12 m.

@@ -30,7 +30,6 @@ typedef struct hit_state {
   IDXV kind, index, tests, predict, step;
 } hit_state;
 
-#define ARCUS_SMART_CHUNK 16 /* skipped steps per emptiness proof at most */
 #define ARCUS_STATE_REALS 7 /* x y z vx vy vz s */
 
 /* The skipped steps' net points of each lane of a group, since the last proof. */
@@ -188,6 +187,22 @@ ARCUS_INLINE int chord_hit(const geometry_desc* geo, __global const bvh_node* no
   return kind;
 }
 
+/* The squared distance of point p from the segment a + t·d, t in [0, 1] (dd = d·d). */
+ARCUS_INLINE REAL segment_distance2(const REAL a[3], const REAL d[3], REAL dd, const REAL p[3]) {
+  const REAL ap[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+  const REAL u = dd > RC(0) ? clamp((ap[0] * d[0] + ap[1] * d[1] + ap[2] * d[2]) / dd, RC(0), RC(1)) : RC(0);
+  const REAL q[3] = {ap[0] - u * d[0], ap[1] - u * d[1], ap[2] - u * d[2]};
+  return q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
+}
+
+/* The radius of the capsule around the chord a + t·d that holds points as far as
+ * sqrt(r2) from it, grown by rounding: the points are exact, the distances computed
+ * from them (and a mirror image of them) not. */
+ARCUS_INLINE REAL capsule_radius(REAL r2, const REAL a[3], REAL dd) {
+  const REAL scale = fmax(fmax(fabs(a[0]), fabs(a[1])), fmax(fabs(a[2]), sqrt(dd)));
+  return sqrt(r2) * (RC(1) + RC(64) * ARCUS_BVH_SLACK) + RC(64) * ARCUS_BVH_SLACK * scale;
+}
+
 /* Whether chunk points i..j of lane l may come near a primitive: one test of the
  * capsule around the chord from point i to point j, as wide as the points between
  * stray from it. */
@@ -199,15 +214,10 @@ ARCUS_INLINE int smart_span_meets(const smart_chunk* c, int l, int i, int j, con
   const REAL dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
   REAL r2 = RC(0);
   for (int k = i + 1; k < j; ++k) {
-    const REAL ap[3] = {c->p[k][0][l] - a[0], c->p[k][1][l] - a[1], c->p[k][2][l] - a[2]};
-    const REAL u = dd > RC(0) ? clamp((ap[0] * d[0] + ap[1] * d[1] + ap[2] * d[2]) / dd, RC(0), RC(1)) : RC(0);
-    const REAL q[3] = {ap[0] - u * d[0], ap[1] - u * d[1], ap[2] - u * d[2]};
-    r2 = fmax(r2, q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+    const REAL p[3] = {c->p[k][0][l], c->p[k][1][l], c->p[k][2][l]};
+    r2 = fmax(r2, segment_distance2(a, d, dd, p));
   }
-  /* Grown by rounding: the points are exact, the distances computed from them not. */
-  const REAL scale = fmax(fmax(fabs(a[0]), fabs(a[1])), fmax(fabs(a[2]), sqrt(dd)));
-  const REAL r = sqrt(r2) * (RC(1) + RC(64) * ARCUS_BVH_SLACK) + RC(64) * ARCUS_BVH_SLACK * scale;
-  return geometry_meets_capsule(geo, nodes, tris, shapes, a, d, r);
+  return geometry_meets_capsule(geo, nodes, tris, shapes, a, d, capsule_radius(r2, a, dd));
 }
 
 /* The smart-step proof of lane l's chunk: one capsule test for the whole chunk; where
@@ -417,7 +427,8 @@ ARCUS_INLINE void geometry_step(const medium* m, const advance_desc* job, const 
   /* The path crosses the surface within the step where the step's end lies beyond it;
    * otherwise (a chord through a whole sphere, a chord in the plane) the chord's own
    * hit point stands, off the path by at most the step's sagitta. */
-  const MASKV bracketed = hits & (surface_distance(job, &surf, hy1) > RC(0));
+  MASKV bracketed = hits & (surface_distance(job, &surf, hy1) > RC(0));
+  if (geo->occlusion) bracketed = hits & !hits; /* none: the chord's hit point stands */
   const MASKV chord = hits & !bracketed;
   if (ANY(chord)) {
     const REALV t = VLOAD(0, t_hit);

@@ -37,7 +37,8 @@
     I shape_count;                                                                  \
     I triangle_count; /* 0: no BVH to traverse                                   */ \
     I max_tests;      /* bound on the tests counter (saturates)                  */ \
-    I pad;                                                                          \
+    I occlusion;      /* 1: a hit only stops the ray, where its chord hit (shadow \
+                       * rays toward a sun ask "blocked?", not where)           */ \
   } NAME
 
 /* The hit record, integers (stride entries per component, like the ray state): */

@@ -11,7 +11,14 @@
  * the path interpolated between the two at equal arc length along a's points as far as
  * both reach (it ends as the shorter one ended), mirrored in `plane` (normal·p = d) if
  * ray_mirror[r].  Results: `out` (x y z vx vy vz s, stride entries per component),
- * out_status and the hit record; a walk that hits nothing ends as its path ended.   */
+ * out_status and the hit record; a walk that hits nothing ends as its path ended.
+ *
+ * A cached path's chunks of ARCUS_SMART_CHUNK chords are proved once
+ * (arcus_path_capsules: the radius of the capsule around each chunk's first-to-last
+ * chord that holds its points), so a walk predicting its hit step (smart step
+ * selection) proves the chunks before it with one test each without reading their
+ * points, and starts at the first chunk not proved empty: the same proofs as the
+ * trace's, made once for every later frame.   */
 #if defined(ARCUS_USE_GEOMETRY) && defined(ARCUS_USE_BOX)
 
 #define WALK_REALS 7
@@ -29,9 +36,41 @@ ARCUS_INLINE void walk_state_at(__global const REAL* paths, int capacity, int q,
   out[6] = s;
 }
 
+/* Path caching's proofs (thesis §4.3.2.4): radii[q·chunks + c] is the radius of the
+ * capsule around the chord from point c·ARCUS_SMART_CHUNK to point
+ * (c + 1)·ARCUS_SMART_CHUNK of path q that holds the points between, or -1 where the
+ * chunk runs past the path's end.  `per_item` paths a work-item (it runs once per
+ * cache; few work-items keep PoCL's per-group cost small). */
+__kernel void arcus_path_capsules(__global const REAL* paths, const int capacity, __global const int* counts,
+                                  const int count, const int chunks, const int per_item, __global REAL* radii) {
+  const int q0 = (int)get_global_id(0) * per_item;
+  for (int q = q0; q < min(count, q0 + per_item); ++q) {
+    for (int c = 0; c < chunks; ++c) {
+      const int i = c * ARCUS_SMART_CHUNK, j = i + ARCUS_SMART_CHUNK;
+      if (j >= counts[q]) {
+        radii[(size_t)q * chunks + c] = RC(-1);
+        continue;
+      }
+      __global const REAL* pa = WALK_POINT(q, i);
+      __global const REAL* pb = WALK_POINT(q, j);
+      const REAL a[3] = {pa[0], pa[1], pa[2]};
+      const REAL d[3] = {pb[0] - a[0], pb[1] - a[1], pb[2] - a[2]};
+      const REAL dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+      REAL r2 = RC(0);
+      for (int k = i + 1; k < j; ++k) {
+        __global const REAL* pk = WALK_POINT(q, k);
+        const REAL p[3] = {pk[0], pk[1], pk[2]};
+        r2 = fmax(r2, segment_distance2(a, d, dd, p));
+      }
+      radii[(size_t)q * chunks + c] = capsule_radius(r2, a, dd);
+    }
+  }
+}
+
 /* What a walked ray follows, per lane. */
 typedef struct walk_lane {
   int a, b, mirror, points; /* points: of the walked path */
+  int first;                /* the point it starts from: the chunks before are proved empty */
   int ja, jb;               /* cursors (interpolated paths) */
   REAL end;                 /* interpolated: where the shorter path ends */
 } walk_lane;
@@ -60,8 +99,8 @@ ARCUS_INLINE void walk_point(__global const REAL* paths, int capacity, __global 
   }
 }
 
-/* Point k of every lane's walked path into a lane group (lanes past their path keep
- * what they hold). */
+/* Point k of every lane's walked path into a lane group, or with k < 0 each lane's
+ * first point (lanes before their first point or past their path keep what they hold). */
 ARCUS_INLINE void walk_load(__global const REAL* paths, int capacity, __global const int* counts, walk_lane* w, int k,
                             const REAL plane[4], ray6* y, REALV* s) {
   REAL c[WALK_REALS][ARCUS_LANES];
@@ -73,9 +112,10 @@ ARCUS_INLINE void walk_load(__global const REAL* paths, int capacity, __global c
   VSTORE(y->vz, 0, c[5]);
   VSTORE(*s, 0, c[6]);
   for (int l = 0; l < ARCUS_LANES; ++l) {
-    if (k >= w[l].points) continue;
+    const int at = k < 0 ? w[l].first : k;
+    if (at < w[l].first || at >= w[l].points) continue;
     REAL p[WALK_REALS];
-    walk_point(paths, capacity, counts, &w[l], k, plane, p);
+    walk_point(paths, capacity, counts, &w[l], at, plane, p);
     for (int i = 0; i < WALK_REALS; ++i) c[i][l] = p[i];
   }
   y->x = VLOAD(0, c[0]);
@@ -90,7 +130,8 @@ ARCUS_INLINE void walk_load(__global const REAL* paths, int capacity, __global c
 __kernel void arcus_walk(__global const REAL* paths, const int capacity, __global const int* counts,
                          __global const int* end_status, __global const int* rays, const int ray_count,
                          const REAL4 plane4, __global const REAL* wavelengths, __global REAL* out,
-                         __global int* out_status, const field_desc field, __global const REAL* field_data,
+                         __global int* out_status, __global const REAL* radii, const int chunks,
+                         const field_desc field, __global const REAL* field_data,
                          const advance_desc job GEOMETRY_PARAMS) {
   const size_t first_vector = get_global_id(0) * ARCUS_GROUPS;
   const size_t stride = (size_t)job.stride;
@@ -113,15 +154,18 @@ __kernel void arcus_walk(__global const REAL* paths, const int capacity, __globa
   IDXV count[ARCUS_GROUPS], status[ARCUS_GROUPS];
   hit_state hs[ARCUS_GROUPS];
   smart_chunk chunk[ARCUS_GROUPS];
-  int longest = 0;
+  int longest = 0, earliest = INT_MAX;
+  IDXV first[ARCUS_GROUPS];
   FOR_GROUPS(g) {
     const size_t v = first_vector + g;
-    IDX cs[ARCUS_LANES], es[ARCUS_LANES];
+    IDX cs[ARCUS_LANES], es[ARCUS_LANES], fs[ARCUS_LANES], proofs[ARCUS_LANES];
     for (int l = 0; l < ARCUS_LANES; ++l) {
       const size_t r = v * ARCUS_LANES + l;
       walk_lane* w = &lanes[g][l];
       w->ja = w->jb = 0;
       w->end = RC(0);
+      w->first = 0;
+      fs[l] = proofs[l] = 0;
       if (r >= (size_t)ray_count) { /* padding: no path */
         w->a = 0, w->b = -1, w->mirror = 0, w->points = 0;
         cs[l] = 0;
@@ -145,10 +189,31 @@ __kernel void arcus_walk(__global const REAL* paths, const int capacity, __globa
       } else {
         w->b = -1; /* a path of fewer than two points has nothing to interpolate */
       }
+      /* A cached or mirrored path predicting its hit at step n: the chunks whose chords
+       * all come before step n − 1 (those smart step selection skips) proved by their
+       * capsules, as long as each proof holds; at least one chord is left to walk. */
+      const int predicted = predictions ? predictions[r] : -1;
+      if (radii && w->b < 0 && predicted >= 0) {
+        for (int c = 0; c < chunks; ++c) {
+          const int j = (c + 1) * ARCUS_SMART_CHUNK;
+          const REAL radius = radii[(size_t)w->a * chunks + c];
+          if (j > predicted - 1 || j + 1 >= w->points || !(radius >= RC(0))) break;
+          REAL pa[WALK_REALS], pb[WALK_REALS];
+          walk_point(paths, capacity, counts, w, j - ARCUS_SMART_CHUNK, plane, pa);
+          walk_point(paths, capacity, counts, w, j, plane, pb);
+          const REAL d[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
+          ++proofs[l];
+          if (geometry_meets_capsule(&geo, nodes, tris, shapes, pa, d, radius)) break;
+          w->first = j;
+        }
+      }
+      fs[l] = w->first;
       cs[l] = w->points;
       longest = max(longest, w->points);
+      earliest = min(earliest, w->first);
     }
     count[g] = VLOAD(0, cs);
+    first[g] = VLOAD(0, fs);
     /* A path of one point (or none) has no chord: it ends as it was recorded (one that
      * hit at once stops short of where a walked ray goes). */
     IDXV start = VLOAD(0, es);
@@ -156,19 +221,20 @@ __kernel void arcus_walk(__global const REAL* paths, const int capacity, __globa
     status[g] = SEL(start, (IDXV)ARCUS_STATUS_ACTIVE, count[g] > (IDXV)1);
     y[g].x = y[g].y = y[g].z = y[g].vx = y[g].vy = y[g].vz = (REALV)RC(0);
     s[g] = (REALV)RC(0);
-    walk_load(paths, capacity, counts, lanes[g], 0, plane, &y[g], &s[g]);
+    walk_load(paths, capacity, counts, lanes[g], -1, plane, &y[g], &s[g]);
     hs[g].kind = (IDXV)ARCUS_HIT_NONE;
     hs[g].index = (IDXV)-1;
-    hs[g].tests = 0;
+    hs[g].tests = VLOAD(0, proofs);
     hs[g].step = (IDXV)-1;
     hs[g].predict = predictions ? VLOAD_I(v, predictions) : (IDXV)-1;
     smart_chunk_start(&chunk[g], y[g], s[g]);
   }
   ray6 zero; /* no Kahan compensation: recorded points are exact states */
   zero.x = zero.y = zero.z = zero.vx = zero.vy = zero.vz = (REALV)RC(0);
-  for (int k = 0; k + 1 < longest; ++k) {
+  for (int k = earliest == INT_MAX ? 0 : earliest; k + 1 < longest; ++k) {
     FOR_GROUPS(g) {
-      const MASKV moved = (status[g] == (IDXV)ARCUS_STATUS_ACTIVE) & ((IDXV)(k + 1) < count[g]);
+      const MASKV moved =
+          (status[g] == (IDXV)ARCUS_STATUS_ACTIVE) & ((IDXV)(k + 1) < count[g]) & ((IDXV)k >= first[g]);
       if (!ANY(moved)) continue;
       ray6 y1 = y[g], comp1 = zero;
       REALV s1 = s[g];

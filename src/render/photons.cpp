@@ -209,23 +209,6 @@ TraceOutput empty_results(size_t n) {
   return t;
 }
 
-// Copies result k of `from` to slot j of `to`.
-void put(const TraceOutput& from, size_t k, TraceOutput* to, size_t j) {
-  for (int a = 0; a < 3; ++a) {
-    to->positions[3 * j + a] = from.positions[3 * k + a];
-    to->directions[3 * j + a] = from.directions[3 * k + a];
-  }
-  to->lengths[j] = from.lengths[k];
-  to->steps[j] = from.steps[k];
-  to->status[j] = from.status[k];
-  to->object[j] = from.object[k];
-  to->primitive[j] = from.primitive[k];
-  to->hit_kind[j] = from.hit_kind[k];
-  to->hit_index[j] = from.hit_index[k];
-  to->hit_step[j] = from.hit_step[k];
-  to->tests[j] = from.tests[k];
-}
-
 // The photons as they leave the lights, with what the techniques need of each.
 struct Emission {
   std::vector<Live> live;
@@ -589,7 +572,7 @@ bool interpolate(const RenderScene& s, const TraceOutput& t, const std::vector<u
   }
   if (!(length(d) > 0)) return false;
   d = normalized(d);
-  put(t, first, out, j);  // the nearest's surface
+  out->copy_ray(j, t, first);  // the nearest's surface
   for (int a = 0; a < 3; ++a) {
     out->positions[3 * j + a] = (&p.x)[a];
     out->directions[3 * j + a] = (&d.x)[a];
@@ -743,7 +726,7 @@ TraceOutput first_results(arcus_context_t* ctx, RenderScene* scene, const arcus_
       const TraceOutput t = plane ? record_paths(ctx, scene, params, b.input(smart ? pred.data() : nullptr), hint, &paths)
                                   : trace(ctx, scene, params, b.input(smart ? pred.data() : nullptr));
       count_trace(t, true, st);
-      for (size_t k = c0; k < c1; ++k) put(t, k - c0, &out, (*pass)[k]);
+      for (size_t k = c0; k < c1; ++k) out.copy_ray((*pass)[k], t, k - c0);
       if (!plane) continue;
       hint = std::max<uint32_t>(hint, paths.capacity);
       std::vector<WalkRay> rays;
@@ -768,7 +751,7 @@ TraceOutput first_results(arcus_context_t* ctx, RenderScene* scene, const arcus_
           fallback_pred.push_back(-1);
           continue;
         }
-        put(mt, k, &out, mirrors[k]);
+        out.copy_ray(mirrors[k], mt, k);
         (*how)[mirrors[k]] = kFirstMirrored;
         ++st->mirrored;
       }
@@ -800,7 +783,7 @@ TraceOutput first_results(arcus_context_t* ctx, RenderScene* scene, const arcus_
     const TraceOutput t = trace(ctx, scene, params, b.input(smart ? fallback_pred.data() : nullptr));
     count_trace(t, true, st);
     for (size_t k = 0; k < fallback.size(); ++k) {
-      put(t, k, &out, fallback[k]);
+      out.copy_ray(fallback[k], t, k);
       (*how)[fallback[k]] = kFirstFallback;
     }
   }

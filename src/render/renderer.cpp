@@ -77,10 +77,42 @@ struct Batch {
     pixels.push_back(pixel);
   }
   size_t size() const { return pixels.size(); }
+  // The trace's input, predicting with `predictions` if asked.
+  TraceInput input(bool predict) const {
+    TraceInput in;
+    in.count = size();
+    in.origins = origins.data();
+    in.directions = directions.data();
+    in.predictions = predict ? predictions.data() : nullptr;
+    return in;
+  }
 };
+
+// The 99th percentile of the steps of a probe's rays, traced directly (time into *seconds).
+uint64_t probe_steps(arcus_context_t* ctx, RenderScene* scene, const arcus_advance_params& params, const Batch& probe,
+                     double* seconds) {
+  const TraceOutput t = trace(ctx, scene, params, probe.input(false));
+  *seconds += t.stats.total_seconds;
+  return percentile99(t.steps);
+}
 
 // A predicted "end step" for a ray that hits nothing: beyond any path.
 constexpr int32_t kNoHit = std::numeric_limits<int32_t>::max();
+
+// What smart step selection predicts from a ray's result: the step that hit, kNoHit for
+// a ray that left the scene, -1 for a failed ray.
+int32_t end_step_of(int32_t status, int32_t hit_step) {
+  if (status == ARCUS_STATUS_HIT) return hit_step;
+  return status == ARCUS_STATUS_LEFT_BOX || status == ARCUS_STATUS_DONE ? kNoHit : -1;
+}
+
+// Room for recorded paths: all but the longest few of paths whose 99th percentile of
+// steps is `steps`, and a quarter more (a percentile from a sample, or from the last
+// frame, is only an estimate).  The memory is count × room, and a path cut short only
+// sends the few rays that walk past its end to be traced.
+uint32_t path_room(uint64_t steps) {
+  return static_cast<uint32_t>(std::min<uint64_t>(steps + steps / 4 + 4, 1u << 20));
+}
 
 // Every pixel's primary result.
 struct Primary {
@@ -111,8 +143,7 @@ void store(const TraceOutput& t, const std::vector<size_t>& pixels, Primary* out
     out->kind[p] = t.hit_kind[k];
     out->index[p] = t.hit_index[k];
     out->hit_step[p] = t.hit_step[k];
-    const bool left = t.status[k] == ARCUS_STATUS_LEFT_BOX || t.status[k] == ARCUS_STATUS_DONE;
-    out->end_step[p] = t.status[k] == ARCUS_STATUS_HIT ? t.hit_step[k] : left ? kNoHit : -1;
+    out->end_step[p] = end_step_of(t.status[k], t.hit_step[k]);
     out->length[p] = t.lengths[k];
     for (int a = 0; a < 3; ++a) {
       out->position[3 * p + a] = t.positions[3 * k + a];
@@ -124,13 +155,9 @@ void store(const TraceOutput& t, const std::vector<size_t>& pixels, Primary* out
 // Traces a batch of primary rays, all at `wavelength` (nm; NaN: the medium's own).
 void trace_batch(arcus_context_t* ctx, arcus_renderer_s* r, const Batch& b, bool predict, double wavelength,
                  Primary* out, arcus_render_stats* st) {
-  TraceInput in;
-  in.count = b.size();
-  in.origins = b.origins.data();
-  in.directions = b.directions.data();
+  TraceInput in = b.input(predict);
   const std::vector<double> wavelengths(std::isnan(wavelength) ? 0 : b.size(), wavelength);
   if (!wavelengths.empty()) in.wavelengths = wavelengths.data();
-  in.predictions = predict ? b.predictions.data() : nullptr;
   const TraceOutput t = trace(ctx, r->scene, r->params, in);
   st->trace_seconds += t.stats.total_seconds;
   st->rays_traced += b.size();
@@ -182,6 +209,64 @@ V3 sky_radiance(const RenderScene& s, V3 d) {
   return {0, 0, 0};
 }
 
+// Light `light`'s shadow rays b (at `p`), traced; or, while the camera and the scene
+// rest (the batch the same bit for bit as the last frame's), predicted from the last
+// frame's end steps (smart step selection) and, with path caching, walked along the
+// paths the last frame recorded (static lights, thesis §4.3.2.4): the same hits without
+// integrating.
+TraceOutput shadow_rays(arcus_context_t* ctx, arcus_renderer_s* r, size_t light, const arcus_advance_params& p,
+                        bool occlusion, Batch& b, arcus_render_stats* st) {
+  auto input = [&](const Batch& x, bool predict) {
+    TraceInput in = x.input(predict);
+    in.occlusion = occlusion;
+    return in;
+  };
+  const bool smart = r->techniques & ARCUS_TECHNIQUE_SMART_STEP;
+  const bool cache = r->techniques & ARCUS_TECHNIQUE_PATH_CACHE;
+  if (!smart && !cache) return trace(ctx, r->scene, p, input(b, false));
+  if (r->shadow_memory.size() <= light) r->shadow_memory.resize(light + 1);
+  ShadowMemory& mem = r->shadow_memory[light];
+  const bool same = mem.origins == b.origins && mem.directions == b.directions;
+  const bool predict = same && smart;
+  if (predict) b.predictions = mem.end_step;
+  TraceOutput t;
+  if (same && cache && mem.paths) {
+    std::vector<WalkRay> rays(b.size());
+    for (size_t k = 0; k < rays.size(); ++k) rays[k].a = static_cast<int32_t>(k);
+    t = walk(ctx, r->scene, p, *mem.paths, rays, MirrorPlane{}, predict ? b.predictions.data() : nullptr, occlusion);
+    // Walks that came to the end of a path cut short (its room was full): traced.
+    Batch unresolved;
+    for (size_t k = 0; k < b.size(); ++k)
+      if (t.status[k] == ARCUS_STATUS_UNRESOLVED) unresolved.add(v3(&b.origins[3 * k]), v3(&b.directions[3 * k]), k, -1);
+    if (unresolved.size()) {
+      const TraceOutput u = trace(ctx, r->scene, p, input(unresolved, false));
+      for (size_t k = 0; k < unresolved.size(); ++k) t.copy_ray(unresolved.pixels[k], u, k);
+    }
+  } else if (cache) {
+    uint64_t steps = same ? mem.steps_p99 : 0;
+    if (steps == 0) {  // a probe of every 16th ray
+      Batch probe;
+      for (size_t k = 0; k < b.size(); k += kCoarse * kCoarse)
+        probe.add(v3(&b.origins[3 * k]), v3(&b.directions[3 * k]), k, -1);
+      double seconds = 0;
+      steps = probe_steps(ctx, r->scene, p, probe, &seconds);
+    }
+    mem.paths = std::make_unique<DevicePaths>();
+    t = record_paths(ctx, r->scene, p, input(b, predict), path_room(steps), mem.paths.get());
+    prove_chunks(ctx, r->scene, p, mem.paths.get());
+  } else {
+    t = trace(ctx, r->scene, p, input(b, predict));
+  }
+  mem.origins = b.origins;
+  mem.directions = b.directions;
+  mem.end_step.resize(b.size());
+  for (size_t k = 0; k < b.size(); ++k) mem.end_step[k] = end_step_of(t.status[k], t.hit_step[k]);
+  mem.steps_p99 = percentile99(t.steps);
+  if (!cache) mem.paths.reset();
+  if (mem.paths) st->cache_bytes += mem.paths->bytes();
+  return t;
+}
+
 // Direct light at every hit pixel: a curved shadow ray from the hit toward each light
 // (starting along the straight direction to it), traced through the medium; the
 // light counts where the ray reaches it unblocked.
@@ -231,7 +316,9 @@ void shade(arcus_context_t* ctx, arcus_renderer_s* r, const Primary& prim, Rende
                                                   base[p].z * e[3 * k + 2]};
     }
   }
-  for (const LightDesc& light : s.desc.photons.count > 0 ? std::vector<LightDesc>() : s.desc.lights) {
+  const size_t lights = s.desc.photons.count > 0 ? 0 : s.desc.lights.size();
+  for (size_t li = 0; li < lights; ++li) {
+    const LightDesc& light = s.desc.lights[li];
     Batch b;
     std::vector<double> cosine, falloff;
     for (size_t p = 0; p < n; ++p) {
@@ -250,10 +337,6 @@ void shade(arcus_context_t* ctx, arcus_renderer_s* r, const Primary& prim, Rende
       falloff.push_back(light.kind == LightKind::Sun ? 1.0 : 1.0 / dist2);
     }
     if (b.size() == 0) continue;
-    TraceInput in;
-    in.count = b.size();
-    in.origins = b.origins.data();
-    in.directions = b.directions.data();
     arcus_advance_params p = r->params;
     if (light.kind == LightKind::Point) p.length = 0;  // set per ray below: one job per light
     std::vector<double> reach(b.size(), p.length);
@@ -266,10 +349,11 @@ void shade(arcus_context_t* ctx, arcus_renderer_s* r, const Primary& prim, Rende
         p.length = std::max(p.length, reach[k]);
       }
     }
-    const TraceOutput t = trace(ctx, r->scene, p, in);
+    // Toward a sun any hit blocks: where does not matter.  A point light's blocker must
+    // lie nearer than the light, so its hits are found exactly.
+    const TraceOutput t = shadow_rays(ctx, r, li, p, light.kind == LightKind::Sun, b, &job->render_stats);
     job->features |= t.features;
     job->render_stats.shadow_rays += b.size();
-    job->render_stats.trace_seconds += 0;  // shadow time is the shading stage's
     for (size_t k = 0; k < b.size(); ++k) {
       const bool blocked = t.status[k] == ARCUS_STATUS_HIT && t.lengths[k] < reach[k];
       const bool failed = t.status[k] == ARCUS_STATUS_FAILED || t.status[k] == ARCUS_STATUS_INVALID_INPUT;
@@ -329,13 +413,8 @@ PathFrame pixel_paths(arcus_context_t* ctx, arcus_renderer_s* r, const Frame& f,
         (*traced_pixels)[p] = 1;
         b.add(f.origin, pixel_direction(f, c, i, j), p, previous ? (*previous)[p] : -1);
       }
-  TraceInput in;
-  in.count = b.size();
-  in.origins = b.origins.data();
-  in.directions = b.directions.data();
-  in.predictions = previous ? b.predictions.data() : nullptr;
   PathFrame frame;
-  const TraceOutput t = record_paths(ctx, r->scene, r->params, in, capacity_hint, &frame.paths);
+  const TraceOutput t = record_paths(ctx, r->scene, r->params, b.input(previous != nullptr), capacity_hint, &frame.paths);
   frame.features = t.features;
   st->trace_seconds += t.stats.total_seconds;
   st->rays_traced += b.size();
@@ -492,32 +571,24 @@ void walk_frame(arcus_context_t* ctx, arcus_renderer_s* r, const Frame& f, Prima
     paths = r->cached_paths.get();
     st->rays_cached = n;
   } else {
-    // Room for all but the longest few paths the last frame saw (else a probe's): the
-    // memory is count × capacity, and a path cut short only sends the few rays that
-    // walk past its end to be traced.
+    // Room for the paths the last frame saw (else a probe's).
     uint64_t steps = r->previous_steps;
     if (steps == 0) {
-      // No frame yet: the 99th percentile of a coarse probe's steps (every 16th pixel,
-      // traced directly), which costs a sixteenth of a frame.
+      // No frame yet: a coarse probe (every 16th pixel), which costs a sixteenth of a frame.
       Batch probe;
       for (uint32_t j = 0; j < c.height; j += kCoarse)
         for (uint32_t i = 0; i < c.width; i += kCoarse)
           probe.add(f.origin, pixel_direction(f, c, i, j), static_cast<size_t>(j) * c.width + i, -1);
-      TraceInput in;
-      in.count = probe.size();
-      in.origins = probe.origins.data();
-      in.directions = probe.directions.data();
-      const TraceOutput t = trace(ctx, r->scene, r->params, in);
-      st->trace_seconds += t.stats.total_seconds;
-      steps = percentile99(t.steps);
+      steps = probe_steps(ctx, r->scene, r->params, probe, &st->trace_seconds);
     }
-    // A quarter more: a percentile from a sample (or the last frame) is only an estimate.
-    const uint32_t hint = static_cast<uint32_t>(std::min<uint64_t>(steps + steps / 4 + 4, 1u << 20));
+    const uint32_t hint = path_room(steps);
     fresh = std::make_unique<PathFrame>(pixel_paths(ctx, r, f, hint, previous, prim, &done, st));
     paths = fresh.get();
   }
   prim->features |= paths->features;
   const auto walk_start = Clock::now();
+  // The cache's chunks proved once, for the walks of this frame and the later ones.
+  if (fresh && cache) prove_chunks(ctx, r->scene, r->params, &fresh->paths);
   auto walk_pixels = [&](const std::vector<size_t>& pixels, const std::vector<int32_t>& predictions) {
     if (pixels.empty()) return;
     std::vector<WalkRay> rays;

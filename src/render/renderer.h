@@ -20,6 +20,17 @@ struct PathFrame {
   MirrorPlane plane;
   arcus_features features = 0;  // the recording's program
 };
+
+// What one light's shadow rays leave to the next frame while the camera and the scene
+// rest: the batch (to recognise it: the same origins and directions bit for bit), each
+// ray's end step (smart step selection's temporal prediction) and, with PATH_CACHE,
+// its recorded path (static lights, thesis §4.3.2.4), which the next frame walks.
+struct ShadowMemory {
+  std::vector<double> origins, directions;
+  std::vector<int32_t> end_step;
+  std::unique_ptr<DevicePaths> paths;
+  uint64_t steps_p99 = 0;  // the 99th percentile of the rays' steps
+};
 }  // namespace arcus::render
 
 struct arcus_renderer_s : arcus::Handle {
@@ -39,12 +50,14 @@ struct arcus_renderer_s : arcus::Handle {
   // The photons' first generation and its end steps (render/photons.h: PATH_CACHE,
   // SMART_STEP's temporal prediction); it checks its own key, and is dropped with the frames.
   std::unique_ptr<arcus::render::PhotonCache> photon_cache;
+  std::vector<arcus::render::ShadowMemory> shadow_memory;  // one per light
 
   void reset_frames() {
     previous_hit_step.clear();
     previous_steps = 0;
     cached_paths.reset();
     photon_cache.reset();
+    shadow_memory.clear();
   }
 };
 

@@ -1,5 +1,6 @@
 #include "render/trace.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -57,7 +58,7 @@ void use_bounds(const RenderScene* scene, arcus_advance_params* p) {
 struct GeometryArgs {
   std::unique_ptr<DeviceBuffer> hits, predictions;
   void set(arcus_context_t* ctx, RenderScene* scene, bool single, KernelCall& kernel, unsigned arg, size_t stride,
-           size_t count, const int32_t* predicted) {
+           size_t count, const int32_t* predicted, bool occlusion) {
     const auto& bvh = scene->device_bvh[single ? 1 : 0];
     hits = std::make_unique<DeviceBuffer>(ctx, ARCUS_HIT_INTS * stride * sizeof(int32_t), "the hit records");
     if (predicted) {
@@ -68,6 +69,7 @@ struct GeometryArgs {
     arcus_geometry_desc geo{};
     geo.shape_count = static_cast<int32_t>(scene->shapes.size());
     geo.triangle_count = static_cast<int32_t>(scene->triangles.triangle_count());
+    geo.occlusion = occlusion ? 1 : 0;
     kernel.set(arg++, bvh ? bvh->nodes().get() : nullptr);
     kernel.set(arg++, bvh ? bvh->triangles().get() : nullptr);
     kernel.set(arg++, scene->device_shapes[single ? 1 : 0].get());
@@ -81,20 +83,6 @@ struct GeometryArgs {
     return v;
   }
 };
-
-// Runs an advance with `ext` and takes its job (the caller holds the context).
-std::unique_ptr<curved::AdvanceJob> run_advance(arcus_context_t* ctx, RenderScene* scene,
-                                                const arcus_advance_params& p, const TraceInput& in,
-                                                const curved::AdvanceExtension& ext) {
-  arcus_job_t* raw = nullptr;
-  std::string message;
-  const arcus_status status =
-      curved::advance(ctx, scene->field, p, in.count, in.origins, in.directions, in.wavelengths, &raw, &message, &ext);
-  std::unique_ptr<curved::AdvanceJob> job(static_cast<curved::AdvanceJob*>(raw));
-  if (job) job->owner()->drop();  // the job's reference to its context: the caller holds others
-  if (status != ARCUS_SUCCESS) fail(status, message);
-  return job;
-}
 
 }  // namespace
 
@@ -119,7 +107,7 @@ TraceOutput run_trace(arcus_context_t* ctx, RenderScene* scene, arcus_advance_pa
   ext.source = &trace_source();
   ext.record_components = DevicePaths::kReals;
   ext.set_args = [&](KernelCall& kernel, unsigned arg, size_t stride, bool is_single) {
-    geometry.set(ctx, scene, is_single, kernel, arg, stride, in.count, in.predictions);
+    geometry.set(ctx, scene, is_single, kernel, arg, stride, in.count, in.predictions, in.occlusion);
   };
   ext.finished = [&](size_t stride, bool) {
     stride_seen = stride;
@@ -167,6 +155,22 @@ TraceOutput run_trace(arcus_context_t* ctx, RenderScene* scene, arcus_advance_pa
 
 }  // namespace
 
+void TraceOutput::copy_ray(size_t to, const TraceOutput& from, size_t k) {
+  for (int a = 0; a < 3; ++a) {
+    positions[3 * to + a] = from.positions[3 * k + a];
+    directions[3 * to + a] = from.directions[3 * k + a];
+  }
+  lengths[to] = from.lengths[k];
+  steps[to] = from.steps[k];
+  status[to] = from.status[k];
+  object[to] = from.object[k];
+  primitive[to] = from.primitive[k];
+  hit_kind[to] = from.hit_kind[k];
+  hit_index[to] = from.hit_index[k];
+  hit_step[to] = from.hit_step[k];
+  tests[to] = from.tests[k];
+}
+
 TraceOutput trace(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params p, const TraceInput& in) {
   return run_trace(ctx, scene, p, in, nullptr, 0);
 }
@@ -178,15 +182,51 @@ TraceOutput record_paths(arcus_context_t* ctx, RenderScene* scene, arcus_advance
 
 namespace {
 
+// The walk kernels' plan and program for `p` (its box already the scene's bounds).
+struct WalkProgram {
+  curved::Plan plan;
+  BuiltProgram program;
+};
+WalkProgram walk_program(arcus_context_t* ctx, RenderScene* scene, const arcus_advance_params& p) {
+  WalkProgram w{curved::plan_advance(p, scene->field->desc, scene->field->data, ctx->info, ctx->runtime->entry(), false),
+                {}};
+  w.program = ctx->runtime->program(trace_source(), w.plan.features | ARCUS_FEATURE_GEOMETRY, w.plan.layout);
+  return w;
+}
+
+template <class Real>
+void prove_chunks_in(arcus_context_t* ctx, RenderScene* scene, const arcus_advance_params& p, DevicePaths* paths) {
+  constexpr int kChunk = 16;     // ARCUS_SMART_CHUNK (kernels/render/hits.h)
+  constexpr int kPerItem = 64;   // paths a work-item
+  const int32_t longest = paths->counts.empty() ? 0 : *std::max_element(paths->counts.begin(), paths->counts.end());
+  const uint32_t chunks = static_cast<uint32_t>(std::max(0, longest - 1) / kChunk);
+  paths->capsules.reset();
+  paths->chunks = 0;
+  if (chunks == 0 || !paths->points) return;
+  const WalkProgram w = walk_program(ctx, scene, p);
+  DeviceBuffer d_counts(ctx, paths->counts.size() * sizeof(int32_t), "the path lengths", paths->counts.data());
+  auto radii = std::make_shared<DeviceBuffer>(ctx, paths->count() * chunks * sizeof(Real), "the chunks' proofs");
+  KernelCall kernel(w.program.program, "arcus_path_capsules");
+  kernel.set(0, paths->points.get());
+  kernel.set_value(1, static_cast<int32_t>(paths->capacity));
+  kernel.set(2, &d_counts);
+  kernel.set_value(3, static_cast<int32_t>(paths->count()));
+  kernel.set_value(4, static_cast<int32_t>(chunks));
+  kernel.set_value(5, static_cast<int32_t>(kPerItem));
+  kernel.set(6, radii.get());
+  kernel.run(ctx, (paths->count() + kPerItem - 1) / kPerItem);
+  paths->capsules = std::move(radii);
+  paths->chunks = chunks;
+}
+
 template <class Real>
 TraceOutput walk_in(arcus_context_t* ctx, RenderScene* scene, const arcus_advance_params& p, const DevicePaths& paths,
-                    const std::vector<WalkRay>& rays, const MirrorPlane& plane, const int32_t* predictions) {
+                    const std::vector<WalkRay>& rays, const MirrorPlane& plane, const int32_t* predictions,
+                    bool occlusion) {
   const bool single = sizeof(Real) == sizeof(float);
   const size_t count = rays.size();
-  const curved::Plan plan =
-      curved::plan_advance(p, scene->field->desc, scene->field->data, ctx->info, ctx->runtime->entry(), false);
-  const BuiltProgram program =
-      ctx->runtime->program(trace_source(), plan.features | ARCUS_FEATURE_GEOMETRY, plan.layout);
+  const WalkProgram w = walk_program(ctx, scene, p);
+  const curved::Plan& plan = w.plan;
   const size_t per_item = plan.layout.per_item();
   const size_t items = std::max<size_t>(1, (count + per_item - 1) / per_item);
   const size_t stride = items * per_item;
@@ -206,7 +246,7 @@ TraceOutput walk_in(arcus_context_t* ctx, RenderScene* scene, const arcus_advanc
   DeviceBuffer d_status(ctx, stride * sizeof(int32_t), "the walked rays");
   const std::array<Real, 4> mirror{static_cast<Real>(plane.normal[0]), static_cast<Real>(plane.normal[1]),
                                    static_cast<Real>(plane.normal[2]), static_cast<Real>(plane.offset)};
-  KernelCall kernel(program.program, "arcus_walk");
+  KernelCall kernel(w.program.program, "arcus_walk");
   kernel.set(0, paths.points.get());
   kernel.set_value(1, static_cast<int32_t>(paths.capacity));
   kernel.set(2, &d_counts);
@@ -217,9 +257,11 @@ TraceOutput walk_in(arcus_context_t* ctx, RenderScene* scene, const arcus_advanc
   kernel.set(7, nullptr);  // wavelengths: walks are not dispersive (see plan_advance above)
   kernel.set(8, &d_out);
   kernel.set(9, &d_status);
-  curved::set_field_and_job(kernel, 10, 12, ctx, scene->field, p, plan, stride);
+  kernel.set(10, paths.capsules.get());
+  kernel.set_value(11, static_cast<int32_t>(paths.capsules ? paths.chunks : 0));
+  curved::set_field_and_job(kernel, 12, 14, ctx, scene->field, p, plan, stride);
   GeometryArgs geometry;
-  geometry.set(ctx, scene, single, kernel, 13, stride, count, predictions);
+  geometry.set(ctx, scene, single, kernel, 15, stride, count, predictions, occlusion);
   TraceOutput out;
   out.features = plan.features | ARCUS_FEATURE_GEOMETRY;
   out.stats.kernel_seconds = kernel.run(ctx, items);
@@ -254,15 +296,26 @@ TraceOutput walk_in(arcus_context_t* ctx, RenderScene* scene, const arcus_advanc
 
 }  // namespace
 
+void prove_chunks(arcus_context_t* ctx, RenderScene* scene, const arcus_advance_params& params, DevicePaths* paths) {
+  arcus_advance_params p = params;
+  use_bounds(scene, &p);
+  p.record_path = 0;
+  if (p.precision == ARCUS_PRECISION_FLOAT)
+    prove_chunks_in<float>(ctx, scene, p, paths);
+  else
+    prove_chunks_in<double>(ctx, scene, p, paths);
+}
+
 TraceOutput walk(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params p, const DevicePaths& paths,
-                 const std::vector<WalkRay>& rays, const MirrorPlane& plane, const int32_t* predictions) {
+                 const std::vector<WalkRay>& rays, const MirrorPlane& plane, const int32_t* predictions,
+                 bool occlusion) {
   const auto start = std::chrono::steady_clock::now();
   const bool single = p.precision == ARCUS_PRECISION_FLOAT;
   scene->upload(ctx, single);
   use_bounds(scene, &p);
   p.record_path = 0;
-  TraceOutput out = single ? walk_in<float>(ctx, scene, p, paths, rays, plane, predictions)
-                           : walk_in<double>(ctx, scene, p, paths, rays, plane, predictions);
+  TraceOutput out = single ? walk_in<float>(ctx, scene, p, paths, rays, plane, predictions, occlusion)
+                           : walk_in<double>(ctx, scene, p, paths, rays, plane, predictions, occlusion);
   out.stats.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -19,6 +19,9 @@ struct TraceInput {
   const double* directions = nullptr;  // count × 3
   const double* wavelengths = nullptr; // count, or null
   const int32_t* predictions = nullptr; // count predicted hit steps (-1: none), or null
+  // Any hit ends a ray where its chord hit, not moved onto the integrated path: for
+  // rays that only ask whether they are blocked (shadow rays toward a sun).
+  bool occlusion = false;
 };
 
 struct TraceOutput {
@@ -33,6 +36,8 @@ struct TraceOutput {
   std::vector<int32_t> tests;
   arcus_job_stats stats{};
   arcus_features features = 0;  // what the programs it ran compiled
+  // Ray k of `from` as ray `to` of this one (the same size already).
+  void copy_ray(size_t to, const TraceOutput& from, size_t k);
 };
 
 // Traces `in` through the scene with `params` (the box is the scene's bounds): each ray
@@ -48,6 +53,10 @@ struct DevicePaths {
   std::shared_ptr<DeviceBuffer> points;
   uint32_t capacity = 0;
   std::vector<int32_t> counts, end_status;
+  // Path caching's proofs (prove_chunks; none before): per path, `chunks` radii of the
+  // capsules around its chunks of ARCUS_SMART_CHUNK chords (kernels/render/walk.cl).
+  std::shared_ptr<DeviceBuffer> capsules;
+  uint32_t chunks = 0;
   size_t count() const { return counts.size(); }
   size_t bytes() const { return points ? points->bytes() : 0; }
 };
@@ -58,6 +67,11 @@ struct DevicePaths {
 // first ones and counts as cut short (walks that run past its end are traced).
 TraceOutput record_paths(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params params, const TraceInput& in,
                          uint32_t capacity, DevicePaths* paths);
+
+// Proves every full chunk of every path's chords once (paths->capsules), so that walks
+// predicting a later hit (path caching with smart step selection) prove the chunks
+// before it with a test each instead of reading their points.
+void prove_chunks(arcus_context_t* ctx, RenderScene* scene, const arcus_advance_params& params, DevicePaths* paths);
 
 // A walked ray follows recorded path a; or, with b >= 0, the path interpolated between
 // paths a and b at equal arc length along a's net points, as far as both reach
@@ -78,7 +92,8 @@ struct MirrorPlane {
 // interpolated path, or a cached one after the scene moved) is UNRESOLVED: the path
 // stops short of where this ray goes, so it must be traced.
 TraceOutput walk(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params params, const DevicePaths& paths,
-                 const std::vector<WalkRay>& rays, const MirrorPlane& plane, const int32_t* predictions);
+                 const std::vector<WalkRay>& rays, const MirrorPlane& plane, const int32_t* predictions,
+                 bool occlusion = false);  // as TraceInput::occlusion
 
 // The render engine's feature table and its kernel source (features.cpp).
 const KernelSource& trace_source();
