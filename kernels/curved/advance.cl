@@ -24,15 +24,18 @@
 #ifdef ARCUS_USE_RECORD_PATH
 /* Appends the current point of the lanes in `moved`; counts every point, so a count
  * above the capacity tells the host how much room the path needed.  A point is x y z,
- * or with ARCUS_USE_RECORD_STATE the whole state x y z vx vy vz s (the renderer's path
- * cache: enough to resume the integrator at any net point). */
+ * ray by ray (ray r's point k at r·capacity + k), or with ARCUS_USE_RECORD_STATE the
+ * whole state x y z vx vy vz s (the renderer's path cache: enough to resume the
+ * integrator at any net point) step by step (at k·stride + r): the rays of a lane group
+ * write, and later walk, neighbouring memory at each step, and memory past the
+ * longest path of a region is never touched. */
 #ifdef ARCUS_USE_RECORD_STATE
 #define ARCUS_POINT_REALS 7
 #else
 #define ARCUS_POINT_REALS 3
 #endif
-ARCUS_INLINE void record_point(__global REAL* path, int capacity, size_t first_ray, ray6 y, REALV s, MASKV moved,
-                               IDXV* count) {
+ARCUS_INLINE void record_point(__global REAL* path, int capacity, size_t stride, size_t first_ray, ray6 y, REALV s,
+                               MASKV moved, IDXV* count) {
   REAL c[ARCUS_POINT_REALS][ARCUS_LANES];
   IDX cs[ARCUS_LANES], ms[ARCUS_LANES];
   VSTORE(y.x, 0, c[0]);
@@ -49,7 +52,11 @@ ARCUS_INLINE void record_point(__global REAL* path, int capacity, size_t first_r
   for (int l = 0; l < ARCUS_LANES; ++l) {
     if (!ms[l]) continue;
     if (cs[l] < capacity) {
+#ifdef ARCUS_USE_RECORD_STATE
+      __global REAL* p = path + ((size_t)cs[l] * stride + first_ray + l) * ARCUS_POINT_REALS;
+#else
       __global REAL* p = path + ((first_ray + l) * (size_t)capacity + (size_t)cs[l]) * ARCUS_POINT_REALS;
+#endif
       for (int k = 0; k < ARCUS_POINT_REALS; ++k) p[k] = c[k][l];
     }
     cs[l] += 1;
@@ -57,7 +64,8 @@ ARCUS_INLINE void record_point(__global REAL* path, int capacity, size_t first_r
   *count = VLOAD(0, cs);
 }
 #define RECORD_AT(g, yv, sv, moved) \
-  record_point(path, job.path_capacity, (first_vector + (g)) * ARCUS_LANES, (yv), (sv), (moved), &points[g])
+  record_point(path, job.path_capacity, (size_t)job.stride, (first_vector + (g)) * ARCUS_LANES, (yv), (sv), (moved), \
+               &points[g])
 #else
 #define RECORD_AT(g, yv, sv, moved)
 #endif

@@ -223,17 +223,25 @@ ARCUS_INLINE int smart_span_meets(const smart_chunk* c, int l, int i, int j, con
 /* The smart-step proof of lane l's chunk: one capsule test for the whole chunk; where
  * a capsule meets a primitive, its two halves are tested in turn, down to single
  * chords, which are intersected.  Spans are visited along the path, so the first chord
- * that hits is the first along the path.  Returns it (its start is chunk point
- * `return`), or -1; the chunk then restarts at its last point. */
-ARCUS_INLINE int smart_chunk_close(smart_chunk* c, int l, const geometry_desc* geo, __global const bvh_node* nodes,
-                                   __global const REAL* tris, __global const shape* shapes, IDX* tests, int* kind,
-                                   int* index, REAL* t) {
+ * that hits is the first along the path.  With `peel` (the chunk starts the path) the
+ * first chord is intersected alone first: a path leaving a surface (a shadow ray, a
+ * photon's bounce) starts too near it for a capsule around more to clear it.  Returns
+ * the chord that hits (its start is chunk point `return`), or -1; the chunk then
+ * restarts at its last point. */
+ARCUS_INLINE int smart_chunk_close(smart_chunk* c, int l, int peel, const geometry_desc* geo,
+                                   __global const bvh_node* nodes, __global const REAL* tris,
+                                   __global const shape* shapes, IDX* tests, int* kind, int* index, REAL* t) {
   const int m = c->points[l] - 1; /* chords held */
   if (m <= 0) return -1;
-  int lo[ARCUS_SMART_CHUNK], hi[ARCUS_SMART_CHUNK]; /* spans still to prove, the next on top */
+  int lo[ARCUS_SMART_CHUNK + 1], hi[ARCUS_SMART_CHUNK + 1]; /* spans still to prove, the next on top */
   int sp = 0, hit_chord = -1;
-  lo[sp] = 0;
+  const int from = peel && m > 1 ? 1 : 0;
+  lo[sp] = from;
   hi[sp++] = m;
+  if (from) {
+    lo[sp] = 0;
+    hi[sp++] = 1;
+  }
   while (sp > 0 && hit_chord < 0) {
     const int i = lo[--sp], j = hi[sp];
     *tests += 1;
@@ -356,7 +364,10 @@ ARCUS_INLINE void geometry_step(const medium* m, const advance_desc* job, const 
       const int last_skipped = seg + 2 >= predict[l]; /* step n − 1 comes next: test it */
       if (chunk->points[l] == ARCUS_SMART_CHUNK + 1 || last_skipped || en[l] || flush) {
         int ci = -1;
-        const int chord = smart_chunk_close(chunk, l, geo, nodes, tris, shapes, &tests[l], &found_kind, &found, &t);
+        /* The chunk holds the points from seg + 2 − points on. */
+        const int peel = geo->from_surface && seg + 2 - chunk->points[l] == 0;
+        const int chord =
+            smart_chunk_close(chunk, l, peel, geo, nodes, tris, shapes, &tests[l], &found_kind, &found, &t);
         if (chord >= 0) {
           ci = chord;
           for (int c = 0; c < ARCUS_STATE_REALS; ++c) {

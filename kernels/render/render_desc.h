@@ -39,6 +39,9 @@
     I max_tests;      /* bound on the tests counter (saturates)                  */ \
     I occlusion;      /* 1: a hit only stops the ray, where its chord hit (shadow \
                        * rays toward a sun ask "blocked?", not where)           */ \
+    I from_surface;   /* 1: the rays leave a surface (shadow rays): smart step   \
+                       * selection tests their first chord alone (SMART_PEEL)   */ \
+    I pad;                                                                          \
   } NAME
 
 /* The hit record, integers (stride entries per component, like the ray state): */

@@ -6,7 +6,8 @@
  * moved onto the integrated path by the integrator's own step from the chord's start,
  * as when tracing.
  *
- * Path q's points are paths[(q·capacity + k)·7 ...] for k < counts[q], and
+ * Path q's points are paths[(k·slots + q)·7 ...] for k < counts[q] (step by step:
+ * neighbouring paths' points at a step are neighbours in memory), and
  * end_status[q] says how it ended.  Walked ray r follows ray_a[r], or with ray_b[r] >= 0
  * the path interpolated between the two at equal arc length along a's points as far as
  * both reach (it ends as the shorter one ended), mirrored in `plane` (normal·p = d) if
@@ -23,11 +24,11 @@
 
 #define WALK_REALS 7
 #define REAL4 ARCUS_CAT(REAL, 4)
-#define WALK_POINT(q, k) (paths + ((size_t)(q) * (size_t)capacity + (size_t)(k)) * WALK_REALS)
+#define WALK_POINT(q, k) (paths + ((size_t)(k) * (size_t)slots + (size_t)(q)) * WALK_REALS)
 
 /* The state of path q at arc length s, linear between its net points; *j is a cursor
  * that only moves forward (s grows along a walk). */
-ARCUS_INLINE void walk_state_at(__global const REAL* paths, int capacity, int q, int n, REAL s, int* j, REAL* out) {
+ARCUS_INLINE void walk_state_at(__global const REAL* paths, int slots, int q, int n, REAL s, int* j, REAL* out) {
   while (*j + 2 < n && WALK_POINT(q, *j + 1)[6] <= s) ++*j;
   __global const REAL* a = WALK_POINT(q, *j);
   __global const REAL* b = WALK_POINT(q, min(*j + 1, n - 1));
@@ -39,14 +40,17 @@ ARCUS_INLINE void walk_state_at(__global const REAL* paths, int capacity, int q,
 /* Path caching's proofs (thesis §4.3.2.4): radii[q·chunks + c] is the radius of the
  * capsule around the chord from point c·ARCUS_SMART_CHUNK to point
  * (c + 1)·ARCUS_SMART_CHUNK of path q that holds the points between, or -1 where the
- * chunk runs past the path's end.  `per_item` paths a work-item (it runs once per
+ * chunk runs past the path's end.  With `peel` (paths leaving a surface: their start
+ * is too near it for any capsule to clear) the first chunk's capsule starts at point
+ * 1, and its first chord is tested alone.  `per_item` paths a work-item (it runs once per
  * cache; few work-items keep PoCL's per-group cost small). */
-__kernel void arcus_path_capsules(__global const REAL* paths, const int capacity, __global const int* counts,
-                                  const int count, const int chunks, const int per_item, __global REAL* radii) {
+__kernel void arcus_path_capsules(__global const REAL* paths, const int slots, __global const int* counts,
+                                  const int count, const int chunks, const int per_item, const int peel,
+                                  __global REAL* radii) {
   const int q0 = (int)get_global_id(0) * per_item;
   for (int q = q0; q < min(count, q0 + per_item); ++q) {
     for (int c = 0; c < chunks; ++c) {
-      const int i = c * ARCUS_SMART_CHUNK, j = i + ARCUS_SMART_CHUNK;
+      const int i = c == 0 && peel ? 1 : c * ARCUS_SMART_CHUNK, j = (c + 1) * ARCUS_SMART_CHUNK;
       if (j >= counts[q]) {
         radii[(size_t)q * chunks + c] = RC(-1);
         continue;
@@ -76,7 +80,7 @@ typedef struct walk_lane {
 } walk_lane;
 
 /* Point k of the lane's walked path. */
-ARCUS_INLINE void walk_point(__global const REAL* paths, int capacity, __global const int* counts, walk_lane* w, int k,
+ARCUS_INLINE void walk_point(__global const REAL* paths, int slots, __global const int* counts, walk_lane* w, int k,
                              const REAL plane[4], REAL* out) {
   if (w->b < 0) {
     __global const REAL* p = WALK_POINT(w->a, k);
@@ -84,8 +88,8 @@ ARCUS_INLINE void walk_point(__global const REAL* paths, int capacity, __global 
   } else {
     const REAL s = k + 1 < w->points ? WALK_POINT(w->a, k)[6] : w->end;
     REAL pa[WALK_REALS], pb[WALK_REALS];
-    walk_state_at(paths, capacity, w->a, counts[w->a], s, &w->ja, pa);
-    walk_state_at(paths, capacity, w->b, counts[w->b], s, &w->jb, pb);
+    walk_state_at(paths, slots, w->a, counts[w->a], s, &w->ja, pa);
+    walk_state_at(paths, slots, w->b, counts[w->b], s, &w->jb, pb);
     for (int c = 0; c < 6; ++c) out[c] = RC(0.5) * (pa[c] + pb[c]);
     out[6] = s;
   }
@@ -99,10 +103,13 @@ ARCUS_INLINE void walk_point(__global const REAL* paths, int capacity, __global 
   }
 }
 
-/* Point k of every lane's walked path into a lane group, or with k < 0 each lane's
- * first point (lanes before their first point or past their path keep what they hold). */
-ARCUS_INLINE void walk_load(__global const REAL* paths, int capacity, __global const int* counts, walk_lane* w, int k,
-                            const REAL plane[4], ray6* y, REALV* s) {
+/* Point at[l] of each lane l's walked path into a lane group, for the lanes in `load`
+ * (the others keep what they hold). */
+ARCUS_INLINE void walk_load(__global const REAL* paths, int slots, __global const int* counts, walk_lane* w,
+                            IDXV at, MASKV load, const REAL plane[4], ray6* y, REALV* s) {
+  IDX k[ARCUS_LANES], on[ARCUS_LANES];
+  VSTORE_IDX(at, 0, k);
+  VSTORE_IDX((IDXV)load, 0, on);
   REAL c[WALK_REALS][ARCUS_LANES];
   VSTORE(y->x, 0, c[0]);
   VSTORE(y->y, 0, c[1]);
@@ -112,10 +119,9 @@ ARCUS_INLINE void walk_load(__global const REAL* paths, int capacity, __global c
   VSTORE(y->vz, 0, c[5]);
   VSTORE(*s, 0, c[6]);
   for (int l = 0; l < ARCUS_LANES; ++l) {
-    const int at = k < 0 ? w[l].first : k;
-    if (at < w[l].first || at >= w[l].points) continue;
+    if (!on[l]) continue;
     REAL p[WALK_REALS];
-    walk_point(paths, capacity, counts, &w[l], at, plane, p);
+    walk_point(paths, slots, counts, &w[l], (int)k[l], plane, p);
     for (int i = 0; i < WALK_REALS; ++i) c[i][l] = p[i];
   }
   y->x = VLOAD(0, c[0]);
@@ -127,7 +133,7 @@ ARCUS_INLINE void walk_load(__global const REAL* paths, int capacity, __global c
   *s = VLOAD(0, c[6]);
 }
 
-__kernel void arcus_walk(__global const REAL* paths, const int capacity, __global const int* counts,
+__kernel void arcus_walk(__global const REAL* paths, const int slots, __global const int* counts,
                          __global const int* end_status, __global const int* rays, const int ray_count,
                          const REAL4 plane4, __global const REAL* wavelengths, __global REAL* out,
                          __global int* out_status, __global const REAL* radii, const int chunks,
@@ -154,8 +160,7 @@ __kernel void arcus_walk(__global const REAL* paths, const int capacity, __globa
   IDXV count[ARCUS_GROUPS], status[ARCUS_GROUPS];
   hit_state hs[ARCUS_GROUPS];
   smart_chunk chunk[ARCUS_GROUPS];
-  int longest = 0, earliest = INT_MAX;
-  IDXV first[ARCUS_GROUPS];
+  IDXV at[ARCUS_GROUPS]; /* each lane's point: its own, so lanes need not wait for each other */
   FOR_GROUPS(g) {
     const size_t v = first_vector + g;
     IDX cs[ARCUS_LANES], es[ARCUS_LANES], fs[ARCUS_LANES], proofs[ARCUS_LANES];
@@ -199,8 +204,18 @@ __kernel void arcus_walk(__global const REAL* paths, const int capacity, __globa
           const REAL radius = radii[(size_t)w->a * chunks + c];
           if (j > predicted - 1 || j + 1 >= w->points || !(radius >= RC(0))) break;
           REAL pa[WALK_REALS], pb[WALK_REALS];
-          walk_point(paths, capacity, counts, w, j - ARCUS_SMART_CHUNK, plane, pa);
-          walk_point(paths, capacity, counts, w, j, plane, pb);
+          const int peel = c == 0 && geo.from_surface;
+          if (peel) { /* the first chord alone, then the capsule from point 1 */
+            walk_point(paths, slots, counts, w, 0, plane, pa);
+            walk_point(paths, slots, counts, w, 1, plane, pb);
+            const REAL d[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
+            int index;
+            REAL t;
+            ++proofs[l];
+            if (chord_hit(&geo, nodes, tris, shapes, pa, d, &index, &t) != ARCUS_HIT_NONE) break;
+          }
+          walk_point(paths, slots, counts, w, peel ? 1 : j - ARCUS_SMART_CHUNK, plane, pa);
+          walk_point(paths, slots, counts, w, j, plane, pb);
           const REAL d[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
           ++proofs[l];
           if (geometry_meets_capsule(&geo, nodes, tris, shapes, pa, d, radius)) break;
@@ -209,11 +224,9 @@ __kernel void arcus_walk(__global const REAL* paths, const int capacity, __globa
       }
       fs[l] = w->first;
       cs[l] = w->points;
-      longest = max(longest, w->points);
-      earliest = min(earliest, w->first);
     }
     count[g] = VLOAD(0, cs);
-    first[g] = VLOAD(0, fs);
+    at[g] = VLOAD(0, fs);
     /* A path of one point (or none) has no chord: it ends as it was recorded (one that
      * hit at once stops short of where a walked ray goes). */
     IDXV start = VLOAD(0, es);
@@ -221,7 +234,7 @@ __kernel void arcus_walk(__global const REAL* paths, const int capacity, __globa
     status[g] = SEL(start, (IDXV)ARCUS_STATUS_ACTIVE, count[g] > (IDXV)1);
     y[g].x = y[g].y = y[g].z = y[g].vx = y[g].vy = y[g].vz = (REALV)RC(0);
     s[g] = (REALV)RC(0);
-    walk_load(paths, capacity, counts, lanes[g], -1, plane, &y[g], &s[g]);
+    walk_load(paths, slots, counts, lanes[g], at[g], at[g] < count[g], plane, &y[g], &s[g]);
     hs[g].kind = (IDXV)ARCUS_HIT_NONE;
     hs[g].index = (IDXV)-1;
     hs[g].tests = VLOAD(0, proofs);
@@ -231,19 +244,22 @@ __kernel void arcus_walk(__global const REAL* paths, const int capacity, __globa
   }
   ray6 zero; /* no Kahan compensation: recorded points are exact states */
   zero.x = zero.y = zero.z = zero.vx = zero.vy = zero.vz = (REALV)RC(0);
-  for (int k = earliest == INT_MAX ? 0 : earliest; k + 1 < longest; ++k) {
+  for (int walking = 1; walking;) {
+    walking = 0;
     FOR_GROUPS(g) {
-      const MASKV moved =
-          (status[g] == (IDXV)ARCUS_STATUS_ACTIVE) & ((IDXV)(k + 1) < count[g]) & ((IDXV)k >= first[g]);
+      const IDXV next = at[g] + (IDXV)1;
+      const MASKV moved = (status[g] == (IDXV)ARCUS_STATUS_ACTIVE) & (next < count[g]);
       if (!ANY(moved)) continue;
+      walking = 1;
       ray6 y1 = y[g], comp1 = zero;
       REALV s1 = s[g];
-      walk_load(paths, capacity, counts, lanes[g], k + 1, plane, &y1, &s1);
-      geometry_step(MED(g), &job, &geo, nodes, tris, shapes, y[g], zero, s[g], &y1, &comp1, &s1, (IDXV)(k + 1), moved,
-                    moved & ((IDXV)(k + 2) >= count[g]), 0, &hs[g], &chunk[g], &status[g]);
+      walk_load(paths, slots, counts, lanes[g], next, moved, plane, &y1, &s1);
+      geometry_step(MED(g), &job, &geo, nodes, tris, shapes, y[g], zero, s[g], &y1, &comp1, &s1, next, moved,
+                    moved & (next + (IDXV)1 >= count[g]), 0, &hs[g], &chunk[g], &status[g]);
       /* Lanes that moved stand at the chord's end now, or on the surface they hit. */
       y[g] = ray_select(y[g], y1, moved);
       s[g] = SEL(s[g], s1, moved);
+      at[g] = SEL(at[g], next, moved);
     }
   }
   FOR_GROUPS(g) {

@@ -252,7 +252,8 @@ bool run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
 
   // Every size checked before anything is allocated.
   const size_t state_reals = single ? ARCUS_STATE_REALS_FLOAT : ARCUS_STATE_REALS_DOUBLE;
-  const double path_bytes = static_cast<double>(count) * capacity * point_reals * sizeof(Real);
+  const bool step_major = point_reals == 7;  // whole states (AdvanceExtension::take_paths)
+  const double path_bytes = static_cast<double>(step_major ? stride : count) * capacity * point_reals * sizeof(Real);
   const double ray_bytes = static_cast<double>(stride) *
                            ((ARCUS_IN_COMPONENTS + state_reals + (plan.dispersion ? 1 : 0)) * sizeof(Real) +
                             ARCUS_STATE_INTS * sizeof(int32_t));
@@ -367,7 +368,7 @@ bool run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
   if (p.record_path && ext && ext->take_paths) {
     for (size_t i = 0; i < count; ++i)
       job->path_needed.push_back(static_cast<uint64_t>(static_cast<uint32_t>(ist[ARCUS_STATE_POINTS * stride + i])));
-    ext->take_paths(std::move(dev.path), capacity);
+    ext->take_paths(std::move(dev.path), capacity, stride);
   } else if (p.record_path) {
     std::vector<Real> points(count * capacity * 3);
     dev.path->read(ctx, 0, points.size() * sizeof(Real), points.data());

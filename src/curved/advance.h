@@ -80,8 +80,10 @@ struct AdvanceExtension {
   std::function<void(KernelCall& kernel, unsigned first_arg, size_t stride, bool single)> set_args;
   std::function<void(size_t stride, bool single)> finished;  // after the last slice
   // The recorded paths (record_path), as the kernel wrote them: count × capacity ×
-  // record_components reals.  If set, the path buffer is handed over instead of read.
-  std::function<void(std::unique_ptr<DeviceBuffer> paths, uint32_t capacity)> take_paths;
+  // record_components reals, ray by ray; with record_components 7 (whole states,
+  // ARCUS_USE_RECORD_STATE) stride × capacity points step by step, ray r's point k at
+  // k·stride + r.  If set, the path buffer is handed over instead of read.
+  std::function<void(std::unique_ptr<DeviceBuffer> paths, uint32_t capacity, size_t stride)> take_paths;
 };
 
 // The body of arcus_advance: plans, builds (or reuses) the kernel, runs it in slices

@@ -58,7 +58,7 @@ void use_bounds(const RenderScene* scene, arcus_advance_params* p) {
 struct GeometryArgs {
   std::unique_ptr<DeviceBuffer> hits, predictions;
   void set(arcus_context_t* ctx, RenderScene* scene, bool single, KernelCall& kernel, unsigned arg, size_t stride,
-           size_t count, const int32_t* predicted, bool occlusion) {
+           size_t count, const int32_t* predicted, bool occlusion, bool from_surface) {
     const auto& bvh = scene->device_bvh[single ? 1 : 0];
     hits = std::make_unique<DeviceBuffer>(ctx, ARCUS_HIT_INTS * stride * sizeof(int32_t), "the hit records");
     if (predicted) {
@@ -70,6 +70,7 @@ struct GeometryArgs {
     geo.shape_count = static_cast<int32_t>(scene->shapes.size());
     geo.triangle_count = static_cast<int32_t>(scene->triangles.triangle_count());
     geo.occlusion = occlusion ? 1 : 0;
+    geo.from_surface = from_surface ? 1 : 0;
     kernel.set(arg++, bvh ? bvh->nodes().get() : nullptr);
     kernel.set(arg++, bvh ? bvh->triangles().get() : nullptr);
     kernel.set(arg++, scene->device_shapes[single ? 1 : 0].get());
@@ -107,16 +108,17 @@ TraceOutput run_trace(arcus_context_t* ctx, RenderScene* scene, arcus_advance_pa
   ext.source = &trace_source();
   ext.record_components = DevicePaths::kReals;
   ext.set_args = [&](KernelCall& kernel, unsigned arg, size_t stride, bool is_single) {
-    geometry.set(ctx, scene, is_single, kernel, arg, stride, in.count, in.predictions, in.occlusion);
+    geometry.set(ctx, scene, is_single, kernel, arg, stride, in.count, in.predictions, in.occlusion, in.from_surface);
   };
   ext.finished = [&](size_t stride, bool) {
     stride_seen = stride;
     hit_ints = geometry.read(ctx, stride);
   };
   if (paths)
-    ext.take_paths = [&](std::unique_ptr<DeviceBuffer> b, uint32_t capacity) {
+    ext.take_paths = [&](std::unique_ptr<DeviceBuffer> b, uint32_t capacity, size_t stride) {
       paths->points = std::move(b);
       paths->capacity = capacity;
+      paths->stride = stride;
     };
   TraceOutput out;
   {
@@ -142,6 +144,7 @@ TraceOutput run_trace(arcus_context_t* ctx, RenderScene* scene, arcus_advance_pa
     const auto& bvh = scene->device_bvh[single ? 1 : 0];
     fill_hits(scene, bvh.get(), hit_ints, stride_seen, in.count, &out);
     if (paths) {
+      paths->from_surface = in.from_surface;
       paths->counts.resize(in.count);
       paths->end_status = out.status;
       for (size_t r = 0; r < in.count; ++r) {
@@ -208,12 +211,13 @@ void prove_chunks_in(arcus_context_t* ctx, RenderScene* scene, const arcus_advan
   auto radii = std::make_shared<DeviceBuffer>(ctx, paths->count() * chunks * sizeof(Real), "the chunks' proofs");
   KernelCall kernel(w.program.program, "arcus_path_capsules");
   kernel.set(0, paths->points.get());
-  kernel.set_value(1, static_cast<int32_t>(paths->capacity));
+  kernel.set_value(1, static_cast<int32_t>(paths->stride));
   kernel.set(2, &d_counts);
   kernel.set_value(3, static_cast<int32_t>(paths->count()));
   kernel.set_value(4, static_cast<int32_t>(chunks));
   kernel.set_value(5, static_cast<int32_t>(kPerItem));
-  kernel.set(6, radii.get());
+  kernel.set_value(6, static_cast<int32_t>(paths->from_surface ? 1 : 0));
+  kernel.set(7, radii.get());
   kernel.run(ctx, (paths->count() + kPerItem - 1) / kPerItem);
   paths->capsules = std::move(radii);
   paths->chunks = chunks;
@@ -248,7 +252,7 @@ TraceOutput walk_in(arcus_context_t* ctx, RenderScene* scene, const arcus_advanc
                                    static_cast<Real>(plane.normal[2]), static_cast<Real>(plane.offset)};
   KernelCall kernel(w.program.program, "arcus_walk");
   kernel.set(0, paths.points.get());
-  kernel.set_value(1, static_cast<int32_t>(paths.capacity));
+  kernel.set_value(1, static_cast<int32_t>(paths.stride));
   kernel.set(2, &d_counts);
   kernel.set(3, &d_end);
   kernel.set(4, &d_rays);
@@ -261,7 +265,7 @@ TraceOutput walk_in(arcus_context_t* ctx, RenderScene* scene, const arcus_advanc
   kernel.set_value(11, static_cast<int32_t>(paths.capsules ? paths.chunks : 0));
   curved::set_field_and_job(kernel, 12, 14, ctx, scene->field, p, plan, stride);
   GeometryArgs geometry;
-  geometry.set(ctx, scene, single, kernel, 15, stride, count, predictions, occlusion);
+  geometry.set(ctx, scene, single, kernel, 15, stride, count, predictions, occlusion, paths.from_surface);
   TraceOutput out;
   out.features = plan.features | ARCUS_FEATURE_GEOMETRY;
   out.stats.kernel_seconds = kernel.run(ctx, items);

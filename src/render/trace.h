@@ -22,6 +22,9 @@ struct TraceInput {
   // Any hit ends a ray where its chord hit, not moved onto the integrated path: for
   // rays that only ask whether they are blocked (shadow rays toward a sun).
   bool occlusion = false;
+  // The rays leave a surface (shadow rays): smart step selection intersects their first
+  // chord alone before proving the steps after it empty.
+  bool from_surface = false;
 };
 
 struct TraceOutput {
@@ -47,16 +50,19 @@ TraceOutput trace(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params
 
 // Recorded paths, kept on the device in the kernels' precision: path r's net points,
 // each the whole state x y z vx vy vz s, are the first counts[r] of its `capacity`
-// slots; end_status[r] says how it ended.
+// slots, point k at k·stride + r (step by step: a lane group's rays are neighbours);
+// end_status[r] says how it ended.
 struct DevicePaths {
   static constexpr int kReals = 7;
   std::shared_ptr<DeviceBuffer> points;
   uint32_t capacity = 0;
+  size_t stride = 0;  // paths per step (the recording's padded count)
   std::vector<int32_t> counts, end_status;
   // Path caching's proofs (prove_chunks; none before): per path, `chunks` radii of the
   // capsules around its chunks of ARCUS_SMART_CHUNK chords (kernels/render/walk.cl).
   std::shared_ptr<DeviceBuffer> capsules;
   uint32_t chunks = 0;
+  bool from_surface = false;  // recorded from TraceInput::from_surface rays
   size_t count() const { return counts.size(); }
   size_t bytes() const { return points ? points->bytes() : 0; }
 };
