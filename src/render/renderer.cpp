@@ -258,7 +258,6 @@ TraceOutput shadow_rays(arcus_context_t* ctx, arcus_renderer_s* r, size_t light,
   } else {
     t = trace(ctx, r->scene, p, input(b, predict));
   }
-  if (getenv("ARCUS_DBG")) { double tt = 0, ss = 0; for (size_t k = 0; k < t.tests.size(); ++k) tt += t.tests[k], ss += t.steps[k]; fprintf(stderr, "shadow %zu rays: kernel %.3f total %.3f same %d tests/ray %.2f steps/ray %.2f\n", b.size(), t.stats.kernel_seconds, t.stats.total_seconds, (int)same, tt / b.size(), ss / b.size()); }
   mem.origins = b.origins;
   mem.directions = b.directions;
   mem.end_step.resize(b.size());
