@@ -36,6 +36,10 @@ typedef struct hit_state {
 typedef struct smart_chunk {
   REAL p[ARCUS_SMART_CHUNK + 1][ARCUS_STATE_REALS][ARCUS_LANES];
   int points[ARCUS_LANES]; /* points held: 1 (the start) .. ARCUS_SMART_CHUNK + 1 */
+  /* A chunk of m chords whose whole capsule (from point 1 with SMART_PEEL, whose first
+   * chord then misses) is already known to meet a primitive: m, else -1.  A walk's
+   * proof made before it (walk.cl) tells it, so its close goes to the halves at once. */
+  int meets_to[ARCUS_LANES];
 } smart_chunk;
 
 /* Starts every lane's chunk at its current state. */
@@ -47,7 +51,10 @@ ARCUS_INLINE void smart_chunk_start(smart_chunk* c, ray6 y, REALV s) {
   VSTORE(y.vy, 0, c->p[0][4]);
   VSTORE(y.vz, 0, c->p[0][5]);
   VSTORE(s, 0, c->p[0][6]);
-  for (int l = 0; l < ARCUS_LANES; ++l) c->points[l] = 1;
+  for (int l = 0; l < ARCUS_LANES; ++l) {
+    c->points[l] = 1;
+    c->meets_to[l] = -1;
+  }
 }
 
 /* The closest shape hit by the chord o + t·d, t in [0, *t_best): its index, or -1;
@@ -236,9 +243,19 @@ ARCUS_INLINE int smart_chunk_close(smart_chunk* c, int l, int peel, const geomet
   int lo[ARCUS_SMART_CHUNK + 1], hi[ARCUS_SMART_CHUNK + 1]; /* spans still to prove, the next on top */
   int sp = 0, hit_chord = -1;
   const int from = peel && m > 1 ? 1 : 0;
-  lo[sp] = from;
-  hi[sp++] = m;
-  if (from) {
+  const int known = c->meets_to[l] == m && m - from > 1; /* the whole capsule meets: its halves */
+  c->meets_to[l] = -1;
+  if (known) {
+    const int mid = (from + m) / 2;
+    lo[sp] = mid;
+    hi[sp++] = m;
+    lo[sp] = from;
+    hi[sp++] = mid;
+  } else {
+    lo[sp] = from;
+    hi[sp++] = m;
+  }
+  if (from && !known) {
     lo[sp] = 0;
     hi[sp++] = 1;
   }

@@ -202,7 +202,7 @@ void prove_chunks_in(arcus_context_t* ctx, RenderScene* scene, const arcus_advan
   constexpr int kChunk = 16;     // ARCUS_SMART_CHUNK (kernels/render/hits.h)
   constexpr int kPerItem = 64;   // paths a work-item
   const int32_t longest = paths->counts.empty() ? 0 : *std::max_element(paths->counts.begin(), paths->counts.end());
-  const uint32_t chunks = static_cast<uint32_t>(std::max(0, longest - 1) / kChunk);
+  const uint32_t chunks = static_cast<uint32_t>((std::max(0, longest - 1) + kChunk - 1) / kChunk);
   paths->capsules.reset();
   paths->chunks = 0;
   if (chunks == 0 || !paths->points) return;
