@@ -241,7 +241,7 @@ TEST_F(Render, APathCachedSecondFrameEqualsARecomputedOne) {
   arcus_scene_release(scene);
   EXPECT_EQ(cached.stats.rays_cached, cached.objects.size());
   // Every cached path leads to its own hit again, but for the few the first frame
-  // recorded only in part (room for 99 % of them), which are traced again.
+  // recorded only in part (room for 99.9 % of them), which are traced again.
   EXPECT_EQ(cached.stats.rays_traced, cached.stats.rays_unresolved);
   EXPECT_LT(cached.stats.rays_unresolved, cached.objects.size() / 100);
   EXPECT_GT(cached.stats.cache_bytes, 0u);

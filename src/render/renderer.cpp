@@ -32,10 +32,11 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-// The 99th percentile of the rays' step counts (0 for none).
-uint64_t percentile99(std::vector<uint64_t> steps) {
+// The 99.9th percentile of the rays' step counts (0 for none): recorded paths get room
+// for it (recorded step by step, the room past a region's longest path is never touched).
+uint64_t percentile999(std::vector<uint64_t> steps) {
   if (steps.empty()) return 0;
-  const size_t at = steps.size() * 99 / 100;
+  const size_t at = steps.size() * 999 / 1000;
   std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(at), steps.end());
   return steps[at];
 }
@@ -88,12 +89,12 @@ struct Batch {
   }
 };
 
-// The 99th percentile of the steps of a probe's rays, traced directly (time into *seconds).
+// The 99.9th percentile of the steps of a probe's rays, traced directly (time into *seconds).
 uint64_t probe_steps(arcus_context_t* ctx, RenderScene* scene, const arcus_advance_params& params, const Batch& probe,
                      double* seconds) {
   const TraceOutput t = trace(ctx, scene, params, probe.input(false));
   *seconds += t.stats.total_seconds;
-  return percentile99(t.steps);
+  return percentile999(t.steps);
 }
 
 // A predicted "end step" for a ray that hits nothing: beyond any path.
@@ -106,7 +107,7 @@ int32_t end_step_of(int32_t status, int32_t hit_step) {
   return status == ARCUS_STATUS_LEFT_BOX || status == ARCUS_STATUS_DONE ? kNoHit : -1;
 }
 
-// Room for recorded paths: all but the longest few of paths whose 99th percentile of
+// Room for recorded paths: all but the longest few of paths whose 99.9th percentile of
 // steps is `steps`, and a quarter more (a percentile from a sample, or from the last
 // frame, is only an estimate).  The memory is count × room, and a path cut short only
 // sends the few rays that walk past its end to be traced.
@@ -244,7 +245,7 @@ TraceOutput shadow_rays(arcus_context_t* ctx, arcus_renderer_s* r, size_t light,
       for (size_t k = 0; k < unresolved.size(); ++k) t.copy_ray(unresolved.pixels[k], u, k);
     }
   } else if (cache) {
-    uint64_t steps = same ? mem.steps_p99 : 0;
+    uint64_t steps = same ? mem.steps_p999 : 0;
     if (steps == 0) {  // a probe of every 16th ray
       Batch probe;
       for (size_t k = 0; k < b.size(); k += kCoarse * kCoarse)
@@ -262,7 +263,7 @@ TraceOutput shadow_rays(arcus_context_t* ctx, arcus_renderer_s* r, size_t light,
   mem.directions = b.directions;
   mem.end_step.resize(b.size());
   for (size_t k = 0; k < b.size(); ++k) mem.end_step[k] = end_step_of(t.status[k], t.hit_step[k]);
-  mem.steps_p99 = percentile99(t.steps);
+  mem.steps_p999 = percentile999(t.steps);
   if (!cache) mem.paths.reset();
   if (mem.paths) st->cache_bytes += mem.paths->bytes();
   return t;
@@ -764,7 +765,7 @@ std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_call
   }
   r->previous_hit_step = prim.end_step;
   // Room enough in the next frame's recorded paths for all but a few.
-  r->previous_steps = percentile99(prim.steps);
+  r->previous_steps = percentile999(prim.steps);
   job->features |= prim.features;
   st.total_seconds = since(start);
   job->stats.total_seconds = st.total_seconds;

@@ -29,7 +29,7 @@ struct ShadowMemory {
   std::vector<double> origins, directions;
   std::vector<int32_t> end_step;
   std::unique_ptr<DevicePaths> paths;
-  uint64_t steps_p99 = 0;  // the 99th percentile of the rays' steps
+  uint64_t steps_p999 = 0;  // the 99.9th percentile of the rays' steps
 };
 }  // namespace arcus::render
 
@@ -45,7 +45,7 @@ struct arcus_renderer_s : arcus::Handle {
   // step (smart step selection's temporal prediction) and, with PATH_CACHE, every
   // pixel's path (thesis §4.3.2.4; on the host, its size reported as cache_bytes).
   std::vector<int32_t> previous_hit_step;
-  uint64_t previous_steps = 0;  // the 99th percentile of the primary rays' steps
+  uint64_t previous_steps = 0;  // the 99.9th percentile of the primary rays' steps
   std::unique_ptr<arcus::render::PathFrame> cached_paths;
   // The photons' first generation and its end steps (render/photons.h: PATH_CACHE,
   // SMART_STEP's temporal prediction); it checks its own key, and is dropped with the frames.
