@@ -36,9 +36,8 @@ typedef struct hit_state {
 typedef struct smart_chunk {
   REAL p[ARCUS_SMART_CHUNK + 1][ARCUS_STATE_REALS][ARCUS_LANES];
   int points[ARCUS_LANES]; /* points held: 1 (the start) .. ARCUS_SMART_CHUNK + 1 */
-  /* A chunk of m chords whose whole capsule (from point 1 with SMART_PEEL, whose first
-   * chord then misses) is already known to meet a primitive: m, else -1.  A walk's
-   * proof made before it (walk.cl) tells it, so its close goes to the halves at once. */
+  /* A chunk of m chords starting a path whose first chord is already known to miss
+   * (a walk's proof before it, walk.cl): m, else -1; its close does not test it again. */
   int meets_to[ARCUS_LANES];
 } smart_chunk;
 
@@ -93,8 +92,10 @@ ARCUS_INLINE int shapes_segment(__global const shape* shapes, int count, const R
   return best;
 }
 
-/* Whether the segment a + t·d, t in [0, 1], meets the box [lo − r, hi + r]. */
-ARCUS_INLINE int capsule_meets_box(const REAL a[3], const REAL d[3], REAL r, const REAL* lo, const REAL* hi) {
+/* Whether the segment a + t·d, t in [0, 1], meets the box [lo − r, hi + r]; inv[k] is
+ * 1/d[k] (computed once per segment: divisions were most of a test's cost). */
+ARCUS_INLINE int capsule_meets_box(const REAL a[3], const REAL d[3], const REAL inv[3], REAL r, const REAL* lo,
+                                   const REAL* hi) {
   REAL t0 = RC(0), t1 = RC(1);
   for (int k = 0; k < 3; ++k) {
     const REAL l = lo[k] - r, h = hi[k] + r;
@@ -102,8 +103,7 @@ ARCUS_INLINE int capsule_meets_box(const REAL a[3], const REAL d[3], REAL r, con
       if (a[k] < l || a[k] > h) return 0;
       continue;
     }
-    const REAL inv = RC(1) / d[k];
-    REAL u0 = (l - a[k]) * inv, u1 = (h - a[k]) * inv;
+    REAL u0 = (l - a[k]) * inv[k], u1 = (h - a[k]) * inv[k];
     if (u0 > u1) {
       const REAL t = u0;
       u0 = u1;
@@ -116,17 +116,39 @@ ARCUS_INLINE int capsule_meets_box(const REAL a[3], const REAL d[3], REAL r, con
   return 1;
 }
 
+/* Whether points i..j of lane l's chunk lie strictly on one side of the plane through
+ * v with normal n, beyond rounding: then no chord between them crosses the plane, so
+ * none hits a triangle or disc in it (a half-space is convex). */
+ARCUS_INLINE int span_beside_plane(const smart_chunk* c, int l, int i, int j, const REAL v[3], const REAL n[3]) {
+  const REAL nn = fabs(n[0]) + fabs(n[1]) + fabs(n[2]);
+  int side = 0;
+  for (int k = i; k <= j; ++k) {
+    const REAL p[3] = {c->p[k][0][l], c->p[k][1][l], c->p[k][2][l]};
+    const REAL e = n[0] * (p[0] - v[0]) + n[1] * (p[1] - v[1]) + n[2] * (p[2] - v[2]);
+    const REAL scale = fmax(fmax(fabs(p[0]), fabs(p[1])), fabs(p[2])) + fmax(fmax(fabs(v[0]), fabs(v[1])), fabs(v[2]));
+    if (!(fabs(e) > RC(64) * ARCUS_BVH_SLACK * nn * scale)) return 0; /* on it, to rounding */
+    const int s = e > RC(0) ? 1 : -1;
+    if (side != 0 && s != side) return 0;
+    side = s;
+  }
+  return 1;
+}
+
 /* Whether any primitive may come within r of the segment a + t·d, t in [0, 1]
- * (conservative: triangles by their boxes, grown by r). */
+ * (conservative: triangles by their boxes, grown by r).  Given the points the capsule
+ * holds (`span`: lane l's chunk points i..j; NULL: none), a triangle or disc they all
+ * lie beside is ruled out as well, however near the capsule comes to it: a path that
+ * leaves a surface or runs along one proves its chunk at once. */
 ARCUS_INLINE int geometry_meets_capsule(const geometry_desc* geo, __global const bvh_node* nodes,
                                         __global const REAL* tris, __global const shape* shapes, const REAL a[3],
-                                        const REAL d[3], REAL r) {
+                                        const REAL d[3], REAL r, const smart_chunk* span, int l, int i, int j) {
+  const REAL inv[3] = {RC(1) / d[0], RC(1) / d[1], RC(1) / d[2]}; /* unused where d[k] = 0 */
   if (geo->triangle_count > 0 && nodes[0].first >= 0) {
     int stack[ARCUS_BVH_MAX_DEPTH];
     int sp = 0;
     REAL lo[3], hi[3];
     for (int k = 0; k < 3; ++k) lo[k] = nodes[0].lo[k], hi[k] = nodes[0].hi[k];
-    if (capsule_meets_box(a, d, r, lo, hi)) stack[sp++] = 0;
+    if (capsule_meets_box(a, d, inv, r, lo, hi)) stack[sp++] = 0;
     while (sp > 0) {
       __global const bvh_node* n = &nodes[stack[--sp]];
       if (n->count > 0) {
@@ -136,14 +158,20 @@ ARCUS_INLINE int geometry_meets_capsule(const geometry_desc* geo, __global const
             lo[k] = fmin(fmin(v[k], v[3 + k]), v[6 + k]);
             hi[k] = fmax(fmax(v[k], v[3 + k]), v[6 + k]);
           }
-          if (capsule_meets_box(a, d, r, lo, hi)) return 1;
+          if (!capsule_meets_box(a, d, inv, r, lo, hi)) continue;
+          if (!span) return 1;
+          const REAL v0[3] = {v[0], v[1], v[2]};
+          const REAL e1[3] = {v[3] - v[0], v[4] - v[1], v[5] - v[2]};
+          const REAL e2[3] = {v[6] - v[0], v[7] - v[1], v[8] - v[2]};
+          const REAL nt[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+          if (!span_beside_plane(span, l, i, j, v0, nt)) return 1;
         }
         continue;
       }
       for (int c = 0; c < 2; ++c) {
         __global const bvh_node* child = &nodes[n->first + c];
         for (int k = 0; k < 3; ++k) lo[k] = child->lo[k], hi[k] = child->hi[k];
-        if (capsule_meets_box(a, d, r, lo, hi)) stack[sp++] = n->first + c;
+        if (capsule_meets_box(a, d, inv, r, lo, hi)) stack[sp++] = n->first + c;
       }
     }
   }
@@ -156,8 +184,13 @@ ARCUS_INLINE int geometry_meets_capsule(const geometry_desc* geo, __global const
       lo[k] = sh->center[k] - extent;
       hi[k] = sh->center[k] + extent;
     }
-    if (!capsule_meets_box(a, d, r, lo, hi)) continue;
-    if (sh->kind != ARCUS_SHAPE_SPHERE) return 1;
+    if (!capsule_meets_box(a, d, inv, r, lo, hi)) continue;
+    if (sh->kind != ARCUS_SHAPE_SPHERE) {
+      const REAL c0[3] = {sh->center[0], sh->center[1], sh->center[2]};
+      const REAL nd[3] = {sh->normal[0], sh->normal[1], sh->normal[2]};
+      if (!span || !span_beside_plane(span, l, i, j, c0, nd)) return 1;
+      continue;
+    }
     /* A sphere: the segment's closest approach to its centre. */
     const REAL dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
     const REAL ac[3] = {sh->center[0] - a[0], sh->center[1] - a[1], sh->center[2] - a[2]};
@@ -224,7 +257,7 @@ ARCUS_INLINE int smart_span_meets(const smart_chunk* c, int l, int i, int j, con
     const REAL p[3] = {c->p[k][0][l], c->p[k][1][l], c->p[k][2][l]};
     r2 = fmax(r2, segment_distance2(a, d, dd, p));
   }
-  return geometry_meets_capsule(geo, nodes, tris, shapes, a, d, capsule_radius(r2, a, dd));
+  return geometry_meets_capsule(geo, nodes, tris, shapes, a, d, capsule_radius(r2, a, dd), c, l, i, j);
 }
 
 /* The smart-step proof of lane l's chunk: one capsule test for the whole chunk; where
@@ -243,18 +276,10 @@ ARCUS_INLINE int smart_chunk_close(smart_chunk* c, int l, int peel, const geomet
   int lo[ARCUS_SMART_CHUNK + 1], hi[ARCUS_SMART_CHUNK + 1]; /* spans still to prove, the next on top */
   int sp = 0, hit_chord = -1;
   const int from = peel && m > 1 ? 1 : 0;
-  const int known = c->meets_to[l] == m && m - from > 1; /* the whole capsule meets: its halves */
+  const int known = c->meets_to[l] == m; /* the walk proved the first chord misses */
   c->meets_to[l] = -1;
-  if (known) {
-    const int mid = (from + m) / 2;
-    lo[sp] = mid;
-    hi[sp++] = m;
-    lo[sp] = from;
-    hi[sp++] = mid;
-  } else {
-    lo[sp] = from;
-    hi[sp++] = m;
-  }
+  lo[sp] = from;
+  hi[sp++] = m;
   if (from && !known) {
     lo[sp] = 0;
     hi[sp++] = 1;

@@ -202,7 +202,9 @@ __kernel void arcus_walk(__global const REAL* paths, const int slots, __global c
        * capsules, as long as each proof holds.  A path predicted to hit nothing may be
        * proved to its end: nothing is left to walk, and it ends as its path ended. */
       const int predicted = predictions ? predictions[r] : -1;
-      if (radii && w->b < 0 && predicted >= 0) {
+      /* (A path leaving a surface is not: a capsule around its first chunk meets that
+       * surface, which the walk's proof, seeing the points, rules out.) */
+      if (radii && w->b < 0 && predicted >= 0 && !geo.from_surface) {
         for (int c = 0; c < chunks && w->first + 1 < w->points; ++c) {
           const int j = min((c + 1) * ARCUS_SMART_CHUNK, w->points - 1);
           const REAL radius = radii[(size_t)w->a * chunks + c];
@@ -222,7 +224,7 @@ __kernel void arcus_walk(__global const REAL* paths, const int slots, __global c
           walk_point(paths, slots, counts, w, j, plane, pb);
           const REAL d[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
           ++proofs[l];
-          if (geometry_meets_capsule(&geo, nodes, tris, shapes, pa, d, radius)) {
+          if (geometry_meets_capsule(&geo, nodes, tris, shapes, pa, d, radius, 0, 0, 0, 0)) {
             meets_to[l] = j - c * ARCUS_SMART_CHUNK;
             break;
           }
