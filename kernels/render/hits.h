@@ -36,9 +36,6 @@ typedef struct hit_state {
 typedef struct smart_chunk {
   REAL p[ARCUS_SMART_CHUNK + 1][ARCUS_STATE_REALS][ARCUS_LANES];
   int points[ARCUS_LANES]; /* points held: 1 (the start) .. ARCUS_SMART_CHUNK + 1 */
-  /* A chunk of m chords starting a path whose first chord is already known to miss
-   * (a walk's proof before it, walk.cl): m, else -1; its close does not test it again. */
-  int meets_to[ARCUS_LANES];
 } smart_chunk;
 
 /* Starts every lane's chunk at its current state. */
@@ -50,10 +47,7 @@ ARCUS_INLINE void smart_chunk_start(smart_chunk* c, ray6 y, REALV s) {
   VSTORE(y.vy, 0, c->p[0][4]);
   VSTORE(y.vz, 0, c->p[0][5]);
   VSTORE(s, 0, c->p[0][6]);
-  for (int l = 0; l < ARCUS_LANES; ++l) {
-    c->points[l] = 1;
-    c->meets_to[l] = -1;
-  }
+  for (int l = 0; l < ARCUS_LANES; ++l) c->points[l] = 1;
 }
 
 /* The closest shape hit by the chord o + t·d, t in [0, *t_best): its index, or -1;
@@ -276,11 +270,9 @@ ARCUS_INLINE int smart_chunk_close(smart_chunk* c, int l, int peel, const geomet
   int lo[ARCUS_SMART_CHUNK + 1], hi[ARCUS_SMART_CHUNK + 1]; /* spans still to prove, the next on top */
   int sp = 0, hit_chord = -1;
   const int from = peel && m > 1 ? 1 : 0;
-  const int known = c->meets_to[l] == m; /* the walk proved the first chord misses */
-  c->meets_to[l] = -1;
   lo[sp] = from;
   hi[sp++] = m;
-  if (from && !known) {
+  if (from) {
     lo[sp] = 0;
     hi[sp++] = 1;
   }

@@ -40,7 +40,7 @@
     I occlusion;      /* 1: a hit only stops the ray, where its chord hit (shadow \
                        * rays toward a sun ask "blocked?", not where)           */ \
     I from_surface;   /* 1: the rays leave a surface (shadow rays): smart step   \
-                       * selection tests their first chord alone (SMART_PEEL)   */ \
+                       * selection tests their first chord alone (hits.h, peel) */ \
     I pad;                                                                          \
   } NAME
 

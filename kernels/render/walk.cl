@@ -40,17 +40,15 @@ ARCUS_INLINE void walk_state_at(__global const REAL* paths, int slots, int q, in
 /* Path caching's proofs (thesis §4.3.2.4): radii[q·chunks + c] is the radius of the
  * capsule around the chord from point c·ARCUS_SMART_CHUNK to point
  * (c + 1)·ARCUS_SMART_CHUNK of path q (or its last point: the last chunk may be short)
- * that holds the points between, or -1 where the chunk lies past the path's end.  With `peel` (paths leaving a surface: their start
- * is too near it for any capsule to clear) the first chunk's capsule starts at point
- * 1, and its first chord is tested alone.  `per_item` paths a work-item (it runs once per
- * cache; few work-items keep PoCL's per-group cost small). */
+ * that holds the points between, or -1 where the chunk lies past the path's end.
+ * `per_item` paths a work-item (it runs once per cache; few work-items keep PoCL's
+ * per-group cost small). */
 __kernel void arcus_path_capsules(__global const REAL* paths, const int slots, __global const int* counts,
-                                  const int count, const int chunks, const int per_item, const int peel,
-                                  __global REAL* radii) {
+                                  const int count, const int chunks, const int per_item, __global REAL* radii) {
   const int q0 = (int)get_global_id(0) * per_item;
   for (int q = q0; q < min(count, q0 + per_item); ++q) {
     for (int c = 0; c < chunks; ++c) {
-      const int i = c == 0 && peel ? 1 : c * ARCUS_SMART_CHUNK;
+      const int i = c * ARCUS_SMART_CHUNK;
       const int j = min((c + 1) * ARCUS_SMART_CHUNK, counts[q] - 1);
       if (j <= i) {
         radii[(size_t)q * chunks + c] = RC(-1);
@@ -165,7 +163,6 @@ __kernel void arcus_walk(__global const REAL* paths, const int slots, __global c
   FOR_GROUPS(g) {
     const size_t v = first_vector + g;
     IDX cs[ARCUS_LANES], es[ARCUS_LANES], fs[ARCUS_LANES], proofs[ARCUS_LANES];
-    int meets_to[ARCUS_LANES]; /* the chunk the walk starts with, known to meet (smart_chunk) */
     for (int l = 0; l < ARCUS_LANES; ++l) {
       const size_t r = v * ARCUS_LANES + l;
       walk_lane* w = &lanes[g][l];
@@ -173,7 +170,6 @@ __kernel void arcus_walk(__global const REAL* paths, const int slots, __global c
       w->end = RC(0);
       w->first = 0;
       fs[l] = proofs[l] = 0;
-      meets_to[l] = -1;
       if (r >= (size_t)ray_count) { /* padding: no path */
         w->a = 0, w->b = -1, w->mirror = 0, w->points = 0;
         cs[l] = 0;
@@ -202,32 +198,17 @@ __kernel void arcus_walk(__global const REAL* paths, const int slots, __global c
        * capsules, as long as each proof holds.  A path predicted to hit nothing may be
        * proved to its end: nothing is left to walk, and it ends as its path ended. */
       const int predicted = predictions ? predictions[r] : -1;
-      /* (A path leaving a surface is not: a capsule around its first chunk meets that
-       * surface, which the walk's proof, seeing the points, rules out.) */
-      if (radii && w->b < 0 && predicted >= 0 && !geo.from_surface) {
+      if (radii && w->b < 0 && predicted >= 0) {
         for (int c = 0; c < chunks && w->first + 1 < w->points; ++c) {
           const int j = min((c + 1) * ARCUS_SMART_CHUNK, w->points - 1);
           const REAL radius = radii[(size_t)w->a * chunks + c];
           if (j > predicted - 1 || !(radius >= RC(0))) break;
           REAL pa[WALK_REALS], pb[WALK_REALS];
-          const int peel = c == 0 && geo.from_surface;
-          if (peel) { /* the first chord alone, then the capsule from point 1 */
-            walk_point(paths, slots, counts, w, 0, plane, pa);
-            walk_point(paths, slots, counts, w, 1, plane, pb);
-            const REAL d[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
-            int index;
-            REAL t;
-            ++proofs[l];
-            if (chord_hit(&geo, nodes, tris, shapes, pa, d, &index, &t) != ARCUS_HIT_NONE) break;
-          }
-          walk_point(paths, slots, counts, w, peel ? 1 : c * ARCUS_SMART_CHUNK, plane, pa);
+          walk_point(paths, slots, counts, w, c * ARCUS_SMART_CHUNK, plane, pa);
           walk_point(paths, slots, counts, w, j, plane, pb);
           const REAL d[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
           ++proofs[l];
-          if (geometry_meets_capsule(&geo, nodes, tris, shapes, pa, d, radius, 0, 0, 0, 0)) {
-            meets_to[l] = j - c * ARCUS_SMART_CHUNK;
-            break;
-          }
+          if (geometry_meets_capsule(&geo, nodes, tris, shapes, pa, d, radius, 0, 0, 0, 0)) break;
           w->first = j;
         }
       }
@@ -250,7 +231,6 @@ __kernel void arcus_walk(__global const REAL* paths, const int slots, __global c
     hs[g].step = (IDXV)-1;
     hs[g].predict = predictions ? VLOAD_I(v, predictions) : (IDXV)-1;
     smart_chunk_start(&chunk[g], y[g], s[g]);
-    for (int l = 0; l < ARCUS_LANES; ++l) chunk[g].meets_to[l] = meets_to[l];
   }
   ray6 zero; /* no Kahan compensation: recorded points are exact states */
   zero.x = zero.y = zero.z = zero.vx = zero.vy = zero.vz = (REALV)RC(0);

@@ -214,7 +214,7 @@ V3 sky_radiance(const RenderScene& s, V3 d) {
 // rest (the batch the same bit for bit as the last frame's), predicted from the last
 // frame's end steps (smart step selection) and, with path caching, walked along the
 // paths the last frame recorded (static lights, thesis §4.3.2.4): the same hits without
-// integrating.
+// integrating.  With either technique b's origins and directions move into that memory.
 TraceOutput shadow_rays(arcus_context_t* ctx, arcus_renderer_s* r, size_t light, const arcus_advance_params& p,
                         bool occlusion, Batch& b, arcus_render_stats* st) {
   auto input = [&](const Batch& x, bool predict) {
@@ -259,8 +259,8 @@ TraceOutput shadow_rays(arcus_context_t* ctx, arcus_renderer_s* r, size_t light,
   } else {
     t = trace(ctx, r->scene, p, input(b, predict));
   }
-  mem.origins = b.origins;
-  mem.directions = b.directions;
+  mem.origins = std::move(b.origins);
+  mem.directions = std::move(b.directions);
   mem.end_step.resize(b.size());
   for (size_t k = 0; k < b.size(); ++k) mem.end_step[k] = end_step_of(t.status[k], t.hit_step[k]);
   mem.steps_p999 = percentile999(t.steps);
@@ -751,10 +751,10 @@ std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_call
   job->height = c.height;
   job->exposure = r->scene->desc.exposure;
   job->count = n;
-  job->points = prim.position;
-  job->objects = prim.object;
-  job->primitives = prim.primitive;
-  job->distances = prim.length;
+  job->points = std::move(prim.position);
+  job->objects = std::move(prim.object);
+  job->primitives = std::move(prim.primitive);
+  job->distances = std::move(prim.length);
   job->steps.resize(n);
   job->tests.resize(n);
   for (size_t p = 0; p < n; ++p) {
@@ -763,7 +763,7 @@ std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_call
     st.steps += prim.steps[p];
     st.tests += static_cast<uint64_t>(prim.tests[p]);
   }
-  r->previous_hit_step = prim.end_step;
+  r->previous_hit_step = std::move(prim.end_step);
   // Room enough in the next frame's recorded paths for all but a few.
   r->previous_steps = percentile999(prim.steps);
   job->features |= prim.features;

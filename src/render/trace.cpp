@@ -205,7 +205,9 @@ void prove_chunks_in(arcus_context_t* ctx, RenderScene* scene, const arcus_advan
   const uint32_t chunks = static_cast<uint32_t>((std::max(0, longest - 1) + kChunk - 1) / kChunk);
   paths->capsules.reset();
   paths->chunks = 0;
-  if (chunks == 0 || !paths->points) return;
+  // Paths leaving a surface are not proved this way: a capsule around their first chunk
+  // meets the surface they leave (the walk's own proof, seeing the points, rules it out).
+  if (chunks == 0 || !paths->points || paths->from_surface) return;
   const WalkProgram w = walk_program(ctx, scene, p);
   DeviceBuffer d_counts(ctx, paths->counts.size() * sizeof(int32_t), "the path lengths", paths->counts.data());
   auto radii = std::make_shared<DeviceBuffer>(ctx, paths->count() * chunks * sizeof(Real), "the chunks' proofs");
@@ -216,8 +218,7 @@ void prove_chunks_in(arcus_context_t* ctx, RenderScene* scene, const arcus_advan
   kernel.set_value(3, static_cast<int32_t>(paths->count()));
   kernel.set_value(4, static_cast<int32_t>(chunks));
   kernel.set_value(5, static_cast<int32_t>(kPerItem));
-  kernel.set_value(6, static_cast<int32_t>(paths->from_surface ? 1 : 0));
-  kernel.set(7, radii.get());
+  kernel.set(6, radii.get());
   kernel.run(ctx, (paths->count() + kPerItem - 1) / kPerItem);
   paths->capsules = std::move(radii);
   paths->chunks = chunks;
