@@ -74,9 +74,10 @@ struct DevicePaths {
 TraceOutput record_paths(arcus_context_t* ctx, RenderScene* scene, arcus_advance_params params, const TraceInput& in,
                          uint32_t capacity, DevicePaths* paths);
 
-// Proves every full chunk of every path's chords once (paths->capsules), so that walks
-// predicting a later hit (path caching with smart step selection) prove the chunks
-// before it with a test each instead of reading their points.
+// Proves every chunk of every path's chords once (paths->capsules; the last chunk may
+// be shorter; not for paths leaving a surface, whose first capsule meets it), so that
+// walks predicting a later hit (path caching with smart step selection) prove the
+// chunks before it with a test each instead of reading their points.
 void prove_chunks(arcus_context_t* ctx, RenderScene* scene, const arcus_advance_params& params, DevicePaths* paths);
 
 // A walked ray follows recorded path a; or, with b >= 0, the path interpolated between
