@@ -5,6 +5,8 @@
  *   arcus_core.h    status, version, devices, contexts, errors, jobs, features
  *   arcus_scene.h   scene files (JSON), read by the library for every engine
  *   arcus_curved.h  curved light: index-of-refraction fields and advancing rays
+ *   arcus_render.h  rendering through curved light
+ *   arcus_ocean.h   underwater light: the bio-optical model, spectral photon tracing
  */
 #ifndef ARCUS_ARCUS_H
 #define ARCUS_ARCUS_H
@@ -13,5 +15,6 @@
 #include "arcus_scene.h"
 #include "arcus_curved.h"
 #include "arcus_render.h"
+#include "arcus_ocean.h"
 
 #endif /* ARCUS_ARCUS_H */

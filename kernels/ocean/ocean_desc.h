@@ -1,0 +1,120 @@
+/* What the ocean engine's photon tracer and its host share, declared once for both (a
+ * macro per precision, as curved/advance_desc.h does): the limits, the layouts of the
+ * buffers and the description passed by value (thesis §4.2).
+ *
+ * Water tables (buffer `water`, reals), n = grid samples:
+ *   [e·n + k]                 coefficient of active event e at sample k [1/m]
+ *                             (events listed in `event_ids`: only those present)
+ *   inelastic: for process p (ARCUS_OCEAN_PROCESS_*), at emission_offset + p·n·n:
+ *   [(k·n + m)]               emission density h(λ_m | λ_k) [1/nm], then n·n reals of
+ *                             its CDF, the same indices (src/ocean/water.h)
+ *   phase tables, at phase_offset[s] for a tabulated scatterer s: phase_count[s]
+ *   cosines then as many CDF values (piecewise linear density between the cosines)
+ * Lights (buffer `lights`, ARCUS_OCEAN_LIGHT_REALS reals each) and the emission CDF
+ * (buffer `emission`: light_count·n reals, the cumulative share of (light, sample)
+ * pairs in light-major order, last = 1).
+ *
+ * Tallies: `rows` rows of ARCUS_OCEAN_TALLY_REALS(limit) reals, each written by one
+ * work-item only (so no atomics), summed by the host in row order; the depth tallies
+ * (ARCUS_FEATURE_OCEAN_DEPTHS) `rows` rows of depth_count·n·3 reals (E_d, E_u, E_0
+ * per depth and wavelength bin).                                                    */
+#ifndef ARCUS_OCEAN_DESC_H
+#define ARCUS_OCEAN_DESC_H
+
+#ifndef __OPENCL_C_VERSION__
+#include "common/real.h" /* the device source has it prepended */
+#endif
+
+#define ARCUS_OCEAN_EVENTS 10
+#define ARCUS_OCEAN_MAX_INTERACTIONS 64
+/* Boundary events (surface reflections, bottom bounces) a photon may have before it is
+ * counted as carried past the limit: keeps a photon trapped between a reflecting
+ * bottom and total internal reflection from running forever. */
+#define ARCUS_OCEAN_MAX_BOUNCES 256
+
+/* Event ids: the thesis' roulette order (§4.2, eq. 4.4). */
+#define ARCUS_OCEAN_ABSORB_WATER 0
+#define ARCUS_OCEAN_RAMAN 1
+#define ARCUS_OCEAN_ABSORB_DETRITUS 2
+#define ARCUS_OCEAN_ABSORB_PHYTO 3
+#define ARCUS_OCEAN_FLUORESCE_PHYTO 4
+#define ARCUS_OCEAN_ABSORB_CDOM 5
+#define ARCUS_OCEAN_FLUORESCE_CDOM 6
+#define ARCUS_OCEAN_SCATTER_WATER 7
+#define ARCUS_OCEAN_SCATTER_DETRITUS 8
+#define ARCUS_OCEAN_SCATTER_PHYTO 9
+
+/* Phase function kinds (src/ocean/water.h, Phase::Kind). */
+#define ARCUS_OCEAN_PHASE_ISOTROPIC 0
+#define ARCUS_OCEAN_PHASE_RAYLEIGH_LIKE 1
+#define ARCUS_OCEAN_PHASE_HG 2
+#define ARCUS_OCEAN_PHASE_TWO_TERM_HG 3
+#define ARCUS_OCEAN_PHASE_TABLE 4
+
+/* Light kinds; a light is ARCUS_OCEAN_LIGHT_REALS reals:
+ *   kind, position xyz, direction xyz (unit), cos of the spot's half angle,
+ *   the beam's radius (directional).                                               */
+#define ARCUS_OCEAN_LIGHT_POINT 0       /* isotropic from position                    */
+#define ARCUS_OCEAN_LIGHT_SPOT 1        /* uniform in the cone about direction        */
+#define ARCUS_OCEAN_LIGHT_DIRECTIONAL 2 /* a parallel beam along direction through a disc of
+                                         * `radius` about position (plane-parallel: over
+                                         * the surface, per square metre)           */
+#define ARCUS_OCEAN_LIGHT_SKY 3         /* plane-parallel only: uniform radiance from
+                                         * the upper hemisphere, onto the surface    */
+#define ARCUS_OCEAN_LIGHT_REALS 10
+
+/* Per-row tallies: offsets in a row, `limit` the interaction limit. */
+#define ARCUS_OCEAN_T_COUNT 0                       /* events of each kind (10)       */
+#define ARCUS_OCEAN_T_ARRIVING 10                   /* power arriving at each event   */
+#define ARCUS_OCEAN_T_ABSORBED 20                   /* power each kind of event kept  */
+#define ARCUS_OCEAN_T_EMITTED 30
+#define ARCUS_OCEAN_T_PAST_LIMIT 31                 /* carried on past the limit       */
+#define ARCUS_OCEAN_T_BOTTOM 32                     /* absorbed by the bottom          */
+#define ARCUS_OCEAN_T_STORED 33                     /* photons stored for the map      */
+#define ARCUS_OCEAN_T_PHOTONS 34                    /* photons traced                  */
+#define ARCUS_OCEAN_T_INTERACTIONS 35               /* interactions in the medium      */
+#define ARCUS_OCEAN_T_ABSORBED_R2 36                /* Σ power·(distance from emission)²
+                                                     * where absorbed in the water      */
+#define ARCUS_OCEAN_T_BY_INTERACTION 37             /* absorbed at interaction j (0..limit) */
+#define ARCUS_OCEAN_T_ESCAPED(limit) (38 + (limit)) /* escaped after j interactions (0..limit) */
+#define ARCUS_OCEAN_TALLY_REALS(limit) (39 + 2 * (limit))
+
+/* A stored photon (ARCUS_OCEAN_PHOTON_REALS reals per slot; slot = photon·limit + j):
+ * where it scattered, the direction it arrived along (unit), its power after the
+ * event, its wavelength after it [nm], and the event (ARCUS_OCEAN_SCATTER_*, or an
+ * inelastic one); power 0 marks an empty slot. */
+#define ARCUS_OCEAN_PHOTON_REALS 9
+
+#define ARCUS_DECLARE_OCEAN_DESC(NAME, R, I, U64)                                                 \
+  typedef struct NAME {                                                                           \
+    R first_nm, step_nm;      /* the wavelength grid                                         */   \
+    R power;                  /* each photon's power at emission [W]                         */   \
+    R n_water;                /* the water's refractive index (surface)                      */   \
+    R bottom_depth;           /* > 0: a Lambertian bottom at z = −bottom_depth; +inf: none   */   \
+    R bottom_albedo;                                                                              \
+    R box_lo[3], box_hi[3];   /* photons leaving the box escape (may be infinite)            */   \
+    R layer;                  /* depth tallies: thickness of the E_0 track-length layer [m]  */   \
+    R phase_a[3], phase_gf[3], phase_gb[3], phase_zeta[3]; /* the scatterers' phases    */        \
+    U64 seed;                                                                                     \
+    U64 first_photon, end_photon; /* this launch traces photons [first, end)              */      \
+    I count;                  /* grid samples n                                              */   \
+    I events;                 /* active events                                               */   \
+    I event_ids[10];          /* their ids, roulette order                                   */   \
+    I limit;                  /* interaction limit (thesis §5.3: 5)                          */   \
+    I light_count;                                                                                \
+    I surface;                /* 1: a flat air–water surface at z = 0, water below           */   \
+    I store;                  /* 1: store scattered photons (photon map)                     */   \
+    I rows;                   /* tally rows = work-items                                     */   \
+    I depth_count;                                                                                \
+    I emission_offset;        /* offset of the inelastic tables in `water`                   */   \
+    I phase_kind[3];                                                                              \
+    I phase_offset[3], phase_count[3];                                                            \
+  } NAME
+
+#ifdef __OPENCL_C_VERSION__
+ARCUS_DECLARE_OCEAN_DESC(ocean_desc, REAL, int, ulong);
+#else
+ARCUS_DECLARE_OCEAN_DESC(arcus_ocean_desc, double, int32_t, uint64_t);
+#endif
+
+#endif /* ARCUS_OCEAN_DESC_H */
