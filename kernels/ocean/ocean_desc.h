@@ -54,12 +54,12 @@
 /* Light kinds; a light is ARCUS_OCEAN_LIGHT_REALS reals:
  *   kind, position xyz, direction xyz (unit), cos of the spot's half angle,
  *   the beam's radius (directional).                                               */
-#define ARCUS_OCEAN_LIGHT_POINT 0       /* isotropic from position                    */
-#define ARCUS_OCEAN_LIGHT_SPOT 1        /* uniform in the cone about direction        */
-#define ARCUS_OCEAN_LIGHT_DIRECTIONAL 2 /* a parallel beam along direction through a disc of
+#define ARCUS_OCEAN_EMIT_POINT 0       /* isotropic from position                    */
+#define ARCUS_OCEAN_EMIT_SPOT 1        /* uniform in the cone about direction        */
+#define ARCUS_OCEAN_EMIT_DIRECTIONAL 2 /* a parallel beam along direction through a disc of
                                          * `radius` about position (plane-parallel: over
                                          * the surface, per square metre)           */
-#define ARCUS_OCEAN_LIGHT_SKY 3         /* plane-parallel only: uniform radiance from
+#define ARCUS_OCEAN_EMIT_SKY 3         /* plane-parallel only: uniform radiance from
                                          * the upper hemisphere, onto the surface    */
 #define ARCUS_OCEAN_LIGHT_REALS 10
 

@@ -80,6 +80,22 @@ ARCUS_INLINE REAL ocean_sample_table(__global const REAL* x, __global const REAL
   return x[lo] + ocean_linear_inverse(p[lo], p[hi], x[hi] - x[lo], u - c[lo]);
 }
 
+/* The re-emitted wavelength of inelastic process p (0 Raman, 1 chlorophyll, 2 CDOM)
+ * excited at grid sample k, for a uniform u: the tabulated CDF inverted, the density
+ * linear between samples (src/ocean/water.h, WaterTables::emission). */
+ARCUS_INLINE REAL ocean_emission_nm(const ocean_desc* d, __global const REAL* water, int p, int k, REAL u) {
+  const size_t nn = (size_t)d->count * (size_t)d->count;
+  __global const REAL* pdf = water + d->emission_offset + 2 * (size_t)p * nn + (size_t)k * (size_t)d->count;
+  __global const REAL* cdf = pdf + nn;
+  int lo = 0, hi = d->count - 1; /* cdf[lo] <= u < cdf[hi] */
+  while (hi - lo > 1) {
+    const int mid = (lo + hi) / 2;
+    if (cdf[mid] <= u) lo = mid;
+    else hi = mid;
+  }
+  return d->first_nm + d->step_nm * (REAL)lo + ocean_linear_inverse(pdf[lo], pdf[hi], d->step_nm, u - cdf[lo]);
+}
+
 /* Henyey–Greenstein: cos θ for a uniform u (the closed-form inverse). */
 ARCUS_INLINE REAL ocean_hg_cos(REAL g, REAL u) {
   if (fabs(g) < RC(1e-6)) return RC(2) * u - RC(1);
@@ -242,12 +258,12 @@ __kernel void arcus_ocean_trace(__global const REAL* water, __global const REAL*
     REAL power = d.power;
     t[ARCUS_OCEAN_T_EMITTED] += power;
     t[ARCUS_OCEAN_T_PHOTONS] += RC(1);
-    if (kind == ARCUS_OCEAN_LIGHT_POINT) {
+    if (kind == ARCUS_OCEAN_EMIT_POINT) {
       dir = ocean_turn((REAL3)(RC(0), RC(0), RC(1)), RC(1) - RC(2) * a0, RC(2) * OCEAN_PI * a1);
-    } else if (kind == ARCUS_OCEAN_LIGHT_SPOT) {
+    } else if (kind == ARCUS_OCEAN_EMIT_SPOT) {
       dir = ocean_turn(axis, RC(1) - a0 * (RC(1) - L[7]), RC(2) * OCEAN_PI * a1);
     } else {
-      if (kind == ARCUS_OCEAN_LIGHT_SKY) /* cosine-weighted from the upper hemisphere */
+      if (kind == ARCUS_OCEAN_EMIT_SKY) /* cosine-weighted from the upper hemisphere */
         dir = ocean_turn((REAL3)(RC(0), RC(0), RC(-1)), sqrt(a0), RC(2) * OCEAN_PI * a1);
       else
         dir = axis;
@@ -256,7 +272,7 @@ __kernel void arcus_ocean_trace(__global const REAL* water, __global const REAL*
         const REAL T = ocean_enter_water(dp, &dir);
         t[ARCUS_OCEAN_T_ESCAPED(d.limit)] += power * (RC(1) - T); /* reflected by the surface */
         power *= T;
-      } else if (kind == ARCUS_OCEAN_LIGHT_DIRECTIONAL && L[8] > RC(0)) {
+      } else if (kind == ARCUS_OCEAN_EMIT_DIRECTIONAL && L[8] > RC(0)) {
         /* a point of the beam's disc: radius R√u, uniform in area */
         const REAL3 helper = fabs(axis.x) < RC(0.9) ? (REAL3)(RC(1), RC(0), RC(0)) : (REAL3)(RC(0), RC(1), RC(0));
         const REAL3 e1 = normalize(cross(axis, helper)), e2 = cross(axis, e1);
@@ -284,13 +300,13 @@ __kernel void arcus_ocean_trace(__global const REAL* water, __global const REAL*
           t[ARCUS_OCEAN_T_ESCAPED(d.limit) + n] += power; /* out to infinity */
           break;
         }
-        const REAL3 q = p + to_wall * dir;
+        REAL3 q = p + to_wall * dir;
+        if (which == 1) q.z = RC(0); /* exactly on the plane, so the tallies see it reached */
+        if (which == 2) q.z = -d.bottom_depth;
 #ifdef ARCUS_USE_OCEAN_DEPTHS
         ocean_tally_depths(dp, depths, depth_row, p.z, q.z, to_wall, power, ocean_bin(dp, nm));
 #endif
         p = q;
-        if (which == 1) p.z = RC(0);
-        if (which == 2) p.z = -d.bottom_depth;
         REAL ub, uc, ud;
         ocean_draw2(d.seed, i, 5 + 4 * leg, &ub, &uc);
         ocean_draw2(d.seed, i, 6 + 4 * leg, &ud, &u1);
@@ -346,18 +362,7 @@ __kernel void arcus_ocean_trace(__global const REAL* water, __global const REAL*
         REAL uk, ue;
         ocean_draw2(d.seed, i, 6 + 4 * leg, &uk, &ue);
         const int k = uk < tw ? k1 : k0;
-        const size_t nn = (size_t)d.count * (size_t)d.count;
-        __global const REAL* pdf = water + d.emission_offset + 2 * (size_t)process * nn + (size_t)k * (size_t)d.count;
-        __global const REAL* cdf = pdf + nn;
-        /* the grid's wavelengths are first + step·m: a local table of abscissae */
-        int lo2 = 0, hi2 = d.count - 1;
-        while (hi2 - lo2 > 1) {
-          const int mid = (lo2 + hi2) / 2;
-          if (cdf[mid] <= ue) lo2 = mid;
-          else hi2 = mid;
-        }
-        const REAL out_nm =
-            d.first_nm + d.step_nm * (REAL)lo2 + ocean_linear_inverse(pdf[lo2], pdf[hi2], d.step_nm, ue - cdf[lo2]);
+        const REAL out_nm = ocean_emission_nm(dp, water, process, k, ue);
         const REAL ratio = nm / out_nm; /* energy of the new photon per old one */
         t[ARCUS_OCEAN_T_ABSORBED + e] += power * (RC(1) - ratio);
         t[ARCUS_OCEAN_T_BY_INTERACTION + n] += power * (RC(1) - ratio);

@@ -29,6 +29,7 @@ const char* handle_type_name(HandleType type) {
     case HandleType::Job: return "job";
     case HandleType::Scene: return "scene";
     case HandleType::Renderer: return "renderer";
+    case HandleType::Water: return "water";
   }
   return "object";
 }

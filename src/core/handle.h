@@ -12,9 +12,9 @@
 
 namespace arcus {
 
-enum class HandleType : uint32_t { Context, Field, Job, Scene, Renderer };
+enum class HandleType : uint32_t { Context, Field, Job, Scene, Renderer, Water };
 
-// "context", "field", "job", "scene", "renderer".
+// "context", "field", "job", "scene", "renderer", "water".
 const char* handle_type_name(HandleType type);
 
 class Handle {

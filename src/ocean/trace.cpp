@@ -13,9 +13,6 @@
 #include "ocean/ocean_desc.h"  // kernels/ocean/ocean_desc.h: shared with the kernel
 
 namespace arcus::ocean {
-
-const KernelSource& trace_source();
-
 namespace {
 
 static_assert(sizeof(arcus_ocean_desc) % 8 == 0, "ocean_desc must pack alike on host and device");
@@ -69,7 +66,8 @@ bool bounded(const Medium& m) {
   return b;
 }
 
-// The kernel's water buffer (kernels/ocean/ocean_desc.h) and the desc fields it fixes.
+}  // namespace
+
 std::vector<double> water_buffer(const WaterTables& w, bool inelastic, arcus_ocean_desc* d) {
   const size_t n = w.grid.count;
   std::vector<double> buf;
@@ -123,6 +121,8 @@ std::vector<double> water_buffer(const WaterTables& w, bool inelastic, arcus_oce
   if (buf.empty()) buf.push_back(0);  // OpenCL buffers are never empty
   return buf;
 }
+
+namespace {
 
 void normalise(double* v) {
   const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
@@ -200,8 +200,9 @@ void check_trace(const std::vector<Light>& lights, const Medium& m, const TraceP
           "params.max_interactions: must be in 1.." + std::to_string(ARCUS_OCEAN_MAX_INTERACTIONS) + ", got " +
               std::to_string(p.max_interactions));
   for (size_t j = 0; j < p.depths.size(); ++j)
-    require(std::isfinite(p.depths[j]) && p.depths[j] >= 0,
-            "setup.depths[" + std::to_string(j) + "]: must be finite and >= 0, got " + number(p.depths[j]));
+    require(std::isfinite(p.depths[j]) && p.depths[j] >= 0 && p.depths[j] < m.bottom_depth,
+            "setup.depths[" + std::to_string(j) + "]: must be finite, >= 0 and above the bottom, got " +
+                number(p.depths[j]));
   if (!p.depths.empty()) {
     require(m.surface || m.box_hi[2] == 0,
             "setup.depths: irradiance profiles need a plane-parallel column (surface = 1, or box_hi z = 0)");

@@ -13,6 +13,8 @@
 
 #include "arcus/arcus_core.h"
 #include "core/job.h"
+#include "core/kernel_source.h"
+#include "ocean/ocean_desc.h"  // kernels/ocean/ocean_desc.h
 #include "ocean/water.h"
 
 namespace arcus::ocean {
@@ -95,6 +97,12 @@ struct TraceJob : arcus_job_s {
 std::unique_ptr<TraceJob> trace(arcus_context_t* ctx, const WaterTables& water, const std::vector<Light>& lights,
                                 const Medium& medium, const TraceParams& params, arcus_progress_callback progress,
                                 void* user, bool* cancelled);
+
+// The kernel's water buffer (kernels/ocean/ocean_desc.h) and the desc fields it fixes
+// (the active events, the inelastic tables when `inelastic`, the phases); the kernel
+// source, for tests that call its device functions.
+std::vector<double> water_buffer(const WaterTables& water, bool inelastic, arcus_ocean_desc* desc);
+const KernelSource& trace_source();
 
 // The features a trace compiles.
 arcus_features trace_features(const WaterTables& water, const Medium& medium, const TraceParams& params);

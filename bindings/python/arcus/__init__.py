@@ -19,7 +19,7 @@ The shared library is looked up, in order, at the ARCUS_LIBRARY environment vari
 
 import ctypes as _ctypes
 
-from . import media
+from . import media, ocean
 from ._constants import (
     DEVICE_DEFAULT,
     EARTH_RADIUS,
@@ -88,6 +88,7 @@ __all__ = [
     "feature_names",
     "library_path",
     "media",
+    "ocean",
     "render",
 ]
 

@@ -118,6 +118,95 @@ class RenderStatsStruct(ctypes.Structure):
          "tests", "shadow_rays", "photons", "cache_bytes")] + [("techniques", c_uint32)]
 
 
+
+# ---- the ocean engine (arcus_ocean.h) --------------------------------------------------
+
+
+class WavelengthGridStruct(ctypes.Structure):
+    _fields_ = [("first_nm", c_double), ("step_nm", c_double), ("count", c_uint32)]
+
+
+class SpectrumStruct(ctypes.Structure):
+    _fields_ = [("count", c_uint32), ("nm", POINTER(c_double)), ("values", POINTER(c_double))]
+
+
+class PhaseFunctionStruct(ctypes.Structure):
+    _fields_ = [
+        ("kind", c_int32),
+        ("a", c_double),
+        ("g_forward", c_double),
+        ("g_backward", c_double),
+        ("forward_weight", c_double),
+        ("table_count", c_uint32),
+        ("table_cosines", POINTER(c_double)),
+        ("table_values", POINTER(c_double)),
+    ]
+
+
+class BioOpticalStruct(ctypes.Structure):
+    _fields_ = [(name, c_double) for name in (
+        "chlorophyll", "a_d400", "a_y440", "s_d", "s_y", "chlorophyll_yield", "cdom_yield_scale", "raman_scale",
+        "detritus_scattering_reference_a_d400")] + [("detritus_phase", PhaseFunctionStruct)]
+
+
+class WaterIopsStruct(ctypes.Structure):
+    _fields_ = [
+        ("absorption", SpectrumStruct),
+        ("scattering", SpectrumStruct),
+        ("phase", PhaseFunctionStruct),
+        ("raman", c_int32),
+        ("chlorophyll", c_double),
+        ("chlorophyll_yield", c_double),
+        ("a_y440", c_double),
+        ("s_y", c_double),
+    ]
+
+
+class OceanLightStruct(ctypes.Structure):
+    _fields_ = [
+        ("kind", c_int32),
+        ("position", c_double * 3),
+        ("direction", c_double * 3),
+        ("half_angle_deg", c_double),
+        ("radius", c_double),
+        ("spectrum", SpectrumStruct),
+    ]
+
+
+class OceanSetupStruct(ctypes.Structure):
+    _fields_ = [
+        ("grid", WavelengthGridStruct),
+        ("light_count", c_uint32),
+        ("lights", POINTER(OceanLightStruct)),
+        ("surface", c_int32),
+        ("n_water", c_double),
+        ("bottom_depth", c_double),
+        ("bottom_albedo", c_double),
+        ("box_lo", c_double * 3),
+        ("box_hi", c_double * 3),
+        ("depth_count", c_uint32),
+        ("depths", POINTER(c_double)),
+        ("layer", c_double),
+    ]
+
+
+class OceanTraceParamsStruct(ctypes.Structure):
+    _fields_ = [
+        ("photons", c_uint64),
+        ("max_interactions", c_uint32),
+        ("seed", c_uint64),
+        ("store_photons", c_int32),
+        ("force_inelastic", c_int32),
+        ("progress", PROGRESS_CALLBACK),
+        ("progress_user", c_void_p),
+    ]
+
+
+class OceanTalliesStruct(ctypes.Structure):
+    _fields_ = [(name, c_uint64) for name in ("photons", "interactions", "stored")] + [
+        (name, c_double) for name in ("emitted", "past_limit", "bottom", "escaped", "absorbed")] + [
+        (name, c_double * 10) for name in ("count", "arriving", "absorbed_by")] + [("max_interactions", c_uint32)]
+
 ERROR_CALLBACK = ctypes.CFUNCTYPE(None, c_void_p, c_int, c_char_p)
 
 # ---- prototypes -----------------------------------------------------------------------
@@ -202,6 +291,26 @@ _PROTOTYPES = {
         [_handle, _dvec, POINTER(c_int32), POINTER(c_int32), _dvec, POINTER(c_uint32), POINTER(c_uint32)],
     ),
     "arcus_job_write_image": (_status, [_handle, c_char_p, c_char_p]),
+    "arcus_bio_optical_init": (_status, [POINTER(BioOpticalStruct)]),
+    "arcus_bio_optical_preset": (_status, [c_char_p, POINTER(BioOpticalStruct)]),
+    "arcus_water_create": (_status, [_handle, POINTER(BioOpticalStruct), _out_handle]),
+    "arcus_water_create_iops": (_status, [_handle, POINTER(WaterIopsStruct), _out_handle]),
+    "arcus_water_retain": (_status, [_handle]),
+    "arcus_water_release": (_status, [_handle]),
+    "arcus_water_get_coefficients": (_status, [_handle, POINTER(WavelengthGridStruct), _dvec, _dvec, _dvec]),
+    "arcus_ocean_setup_init": (_status, [POINTER(OceanSetupStruct)]),
+    "arcus_ocean_trace_params_init": (_status, [POINTER(OceanTraceParamsStruct)]),
+    "arcus_ocean_trace": (
+        _status,
+        [_handle, _handle, POINTER(OceanSetupStruct), POINTER(OceanTraceParamsStruct), _out_handle],
+    ),
+    "arcus_job_get_ocean_tallies": (_status, [_handle, POINTER(OceanTalliesStruct)]),
+    "arcus_job_get_ocean_by_interaction": (_status, [_handle, _dvec, _dvec]),
+    "arcus_job_get_ocean_irradiance": (_status, [_handle, _dvec, _dvec, _dvec]),
+    "arcus_job_get_ocean_photons": (
+        _status,
+        [_handle, POINTER(c_size_t), _dvec, _dvec, _dvec, _dvec, POINTER(c_int32)],
+    ),
 }
 
 # ---- finding the library --------------------------------------------------------------

@@ -507,8 +507,9 @@ class Context:
 
         return self._run_job(start, progress, bool(params.record_path), "arcus_advance")
 
-    def _run_job(self, start, progress, record_path, what):
-        """Runs ``start(callback, job_out)`` (a library call making a job) and reads its job.
+    def _run_job(self, start, progress, record_path, what, reader=None):
+        """Runs ``start(callback, job_out)`` (a library call making a job) and reads its job
+        (``reader(job)``; default: an advance job's rays).
 
         ``progress`` (checked already) is wrapped for the library: its return value
         cancels, and an exception it raises (ctypes would print and drop it) cancels the
@@ -548,7 +549,7 @@ class Context:
             if not job.value:  # arcus.h promises a job with these statuses
                 raise Error(code, "%s returned %s but no job (a library bug); message: %r"
                             % (what, _lib.status_name(code), message), _lib.status_name(code))
-            result = self._read_job(job, record_path)
+            result = reader(job) if reader else self._read_job(job, record_path)
         finally:
             if job.value:
                 lib.arcus_job_release(job)
