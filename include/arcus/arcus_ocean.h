@@ -13,6 +13,8 @@
 #define ARCUS_OCEAN_H
 
 #include "arcus_core.h"
+#include "arcus_render.h" /* arcus_camera */
+#include "arcus_scene.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -24,6 +26,8 @@ extern "C" {
 #define ARCUS_FEATURE_OCEAN_INELASTIC (UINT64_C(1) << 32) /* Raman and fluorescence re-emission */
 #define ARCUS_FEATURE_OCEAN_BOUNDARIES (UINT64_C(1) << 33) /* surface, bottom, box */
 #define ARCUS_FEATURE_OCEAN_DEPTHS (UINT64_C(1) << 34)     /* irradiance tallies at depths */
+#define ARCUS_FEATURE_OCEAN_PHOTON_MAP (UINT64_C(1) << 35) /* images: multiple scattering from the map */
+#define ARCUS_FEATURE_OCEAN_BEAM (UINT64_C(1) << 36)       /* images: the beam radiance estimate */
 
 /* The ten events of the thesis' roulette (§4.2), in its order. */
 #define ARCUS_OCEAN_EVENT_COUNT 10
@@ -147,7 +151,7 @@ typedef struct arcus_ocean_setup {
 
 typedef struct arcus_ocean_trace_params {
   uint64_t photons;
-  uint32_t max_interactions; /* 1..64; the thesis: 5                     */
+  uint32_t max_interactions; /* 1..100000; the thesis: 5 (images)        */
   uint64_t seed;
   int32_t store_photons;     /* 1: keep scattered photons (photon map)   */
   int32_t force_inelastic;   /* 1: compile the inelastic code anyway     */
@@ -172,10 +176,13 @@ typedef struct arcus_ocean_tallies {
   double absorbed_by[ARCUS_OCEAN_EVENT_COUNT]; /* power each kept (inelastic: the energy
                                              * difference, negative for anti-Stokes)    */
   uint32_t max_interactions;
+  uint32_t interaction_bins;
 } arcus_ocean_tallies;
 ARCUS_API arcus_status arcus_job_get_ocean_tallies(arcus_job_t* job, arcus_ocean_tallies* tallies);
-/* Per interaction number j = 0..max_interactions: absorbed at the j-th interaction,
- * escaped after j interactions (thesis Fig. 5.9); arrays of max_interactions + 1. */
+/* Per interaction number j = 0..interaction_bins: absorbed at the j-th interaction,
+ * escaped after j interactions (thesis Fig. 5.9); arrays of interaction_bins + 1,
+ * interaction_bins = min(max_interactions, 64), the last entry also holding every
+ * later interaction. */
 ARCUS_API arcus_status arcus_job_get_ocean_by_interaction(arcus_job_t* job, double* absorbed, double* escaped);
 /* Irradiances at the setup's depths per grid sample [W/m²/nm], depth-major
  * (depth_count × count): downward and upward plane irradiance, scalar irradiance. */
@@ -185,6 +192,51 @@ ARCUS_API arcus_status arcus_job_get_ocean_irradiance(arcus_job_t* job, double* 
 ARCUS_API arcus_status arcus_job_get_ocean_photons(arcus_job_t* job, size_t* count, double* positions,
                                                    double* directions, double* powers, double* wavelengths,
                                                    int32_t* events);
+
+/* ---- images ---------------------------------------------------------------------
+ * Camera rays marched through the water (thesis §4.1.4, §4.2): single scattering from
+ * the lights (elastic and inelastic, eq. 4.5) and multiple scattering from a photon map
+ * of the photons stored from their second interaction on (eq. 4.6), per grid sample,
+ * then CIE 1931 XYZ and linear sRGB.  Point and spot lights in unbounded water. */
+#define ARCUS_OCEAN_ESTIMATE_PER_STEP 0 /* the thesis': k nearest photons at each step */
+#define ARCUS_OCEAN_ESTIMATE_BEAM 1     /* Jarosz, Zwicker & Jensen 2008: photons along the ray */
+
+typedef struct arcus_ocean_march {
+  uint32_t steps;             /* 200 */
+  double distance;            /* how far rays are marched [m]: 20 */
+  uint32_t k;                 /* photons per estimate: 250 */
+  int32_t estimator;          /* ARCUS_OCEAN_ESTIMATE_* */
+  int32_t single_scattering;  /* 1 */
+  int32_t multiple_scattering;/* 1 (0: no photons are traced) */
+  double exposure;            /* PNG: linear sRGB × exposure: 1 */
+} arcus_ocean_march;
+ARCUS_API arcus_status arcus_ocean_march_init(arcus_ocean_march* march);
+
+/* Renders an image (params: the photon trace's; setup: its grid, lights, medium). */
+ARCUS_API arcus_status arcus_ocean_render(arcus_context_t* ctx, arcus_water_t* water, const arcus_ocean_setup* setup,
+                                          const arcus_ocean_trace_params* params, const arcus_camera* camera,
+                                          const arcus_ocean_march* march, arcus_job_t** job);
+/* The same from an ocean scene file (arcus_scene_load; scenes/README.md): its view. */
+ARCUS_API arcus_status arcus_ocean_render_scene(arcus_scene_t* scene, arcus_progress_callback progress, void* user,
+                                                arcus_job_t** job);
+
+typedef struct arcus_ocean_render_stats {
+  double trace_seconds;    /* tracing photons                         */
+  double map_seconds;      /* building the photon map (beam: its radii, too) */
+  double estimate_seconds; /* marching the camera rays                */
+  double total_seconds;
+  uint64_t photons_stored;
+} arcus_ocean_render_stats;
+ARCUS_API arcus_status arcus_job_get_ocean_render_stats(arcus_job_t* job, arcus_ocean_render_stats* stats);
+/* The image (any pointer may be NULL): width, height, grid samples and their
+ * wavelengths [nm]; rgb (width × height × 3 floats, linear sRGB, top row first) and
+ * spectral radiance (width × height × samples doubles, W/m²/sr/nm). */
+ARCUS_API arcus_status arcus_job_get_ocean_image(arcus_job_t* job, uint32_t* width, uint32_t* height,
+                                                 uint32_t* samples, double* wavelengths, float* rgb, double* spectral);
+/* Writes an OpenEXR file (linear RGB; with spectral_bands, one channel per sample
+ * named "L<nm>") and/or a PNG (sRGB, the march's exposure); either path may be NULL. */
+ARCUS_API arcus_status arcus_job_write_ocean_image(arcus_job_t* job, const char* exr_path, const char* png_path,
+                                                   int32_t spectral_bands);
 
 #ifdef __cplusplus
 }

@@ -8,8 +8,8 @@
  *   inelastic: for process p (ARCUS_OCEAN_PROCESS_*), at emission_offset + p·n·n:
  *   [(k·n + m)]               emission density h(λ_m | λ_k) [1/nm], then n·n reals of
  *                             its CDF, the same indices (src/ocean/water.h)
- *   phase tables, at phase_offset[s] for a tabulated scatterer s: phase_count[s]
- *   cosines then as many CDF values (piecewise linear density between the cosines)
+ *   phase tables, at phases.offset[s] for a tabulated scatterer s: phases.count[s]
+ *   cosines, the density over cosines there (∫ dμ = 1, linear between them), its CDF
  * Lights (buffer `lights`, ARCUS_OCEAN_LIGHT_REALS reals each) and the emission CDF
  * (buffer `emission`: light_count·n reals, the cumulative share of (light, sample)
  * pairs in light-major order, last = 1).
@@ -25,8 +25,15 @@
 #include "common/real.h" /* the device source has it prepended */
 #endif
 
+#ifdef __OPENCL_C_VERSION__
+#define REAL3 ARCUS_CAT(REAL, 3)
+#define OCEAN_PI RC(3.14159265358979323846)
+#endif
+
 #define ARCUS_OCEAN_EVENTS 10
-#define ARCUS_OCEAN_MAX_INTERACTIONS 64
+/* Interaction limit at most: images need 5 (§5.3), profiles of nearly white water
+ * thousands (a photon then scatters ~1/(1 − albedo) times). */
+#define ARCUS_OCEAN_MAX_INTERACTIONS 100000
 /* Boundary events (surface reflections, bottom bounces) a photon may have before it is
  * counted as carried past the limit: keeps a photon trapped between a reflecting
  * bottom and total internal reflection from running forever. */
@@ -63,7 +70,10 @@
                                          * the upper hemisphere, onto the surface    */
 #define ARCUS_OCEAN_LIGHT_REALS 10
 
-/* Per-row tallies: offsets in a row, `limit` the interaction limit. */
+/* Per-row tallies: offsets in a row; per-interaction tallies have bins + 1 entries,
+ * bins = min(limit, ARCUS_OCEAN_INTERACTION_BINS), the last one also holding every
+ * later interaction. */
+#define ARCUS_OCEAN_INTERACTION_BINS 64
 #define ARCUS_OCEAN_T_COUNT 0                       /* events of each kind (10)       */
 #define ARCUS_OCEAN_T_ARRIVING 10                   /* power arriving at each event   */
 #define ARCUS_OCEAN_T_ABSORBED 20                   /* power each kind of event kept  */
@@ -85,7 +95,15 @@
  * inelastic one); power 0 marks an empty slot. */
 #define ARCUS_OCEAN_PHOTON_REALS 9
 
-#define ARCUS_DECLARE_OCEAN_DESC(NAME, R, I, U64)                                                 \
+/* The three scatterers' phase functions (water, minerals and detritus, phytoplankton):
+ * kind (ARCUS_OCEAN_PHASE_*), parameters, and for tables where in `water` they are. */
+#define ARCUS_DECLARE_OCEAN_PHASES(NAME, R, I)                                 \
+  typedef struct NAME {                                                        \
+    R a[3], gf[3], gb[3], zeta[3];                                             \
+    I kind[3], offset[3], count[3], pad;                                       \
+  } NAME
+
+#define ARCUS_DECLARE_OCEAN_DESC(NAME, PHASES, R, I, U64)                                                 \
   typedef struct NAME {                                                                           \
     R first_nm, step_nm;      /* the wavelength grid                                         */   \
     R power;                  /* each photon's power at emission [W]                         */   \
@@ -94,27 +112,56 @@
     R bottom_albedo;                                                                              \
     R box_lo[3], box_hi[3];   /* photons leaving the box escape (may be infinite)            */   \
     R layer;                  /* depth tallies: thickness of the E_0 track-length layer [m]  */   \
-    R phase_a[3], phase_gf[3], phase_gb[3], phase_zeta[3]; /* the scatterers' phases    */        \
+    PHASES phases;            /* the scatterers' phase functions                             */   \
     U64 seed;                                                                                     \
     U64 first_photon, end_photon; /* this launch traces photons [first, end)              */      \
     I count;                  /* grid samples n                                              */   \
     I events;                 /* active events                                               */   \
     I event_ids[10];          /* their ids, roulette order                                   */   \
     I limit;                  /* interaction limit (thesis §5.3: 5)                          */   \
+    I bins;                   /* per-interaction tallies: 0..bins, the last also all later   */   \
     I light_count;                                                                                \
     I surface;                /* 1: a flat air–water surface at z = 0, water below           */   \
     I store;                  /* 1: store scattered photons (photon map)                     */   \
     I rows;                   /* tally rows = work-items                                     */   \
     I depth_count;                                                                                \
     I emission_offset;        /* offset of the inelastic tables in `water`                   */   \
-    I phase_kind[3];                                                                              \
-    I phase_offset[3], phase_count[3];                                                            \
   } NAME
 
 #ifdef __OPENCL_C_VERSION__
-ARCUS_DECLARE_OCEAN_DESC(ocean_desc, REAL, int, ulong);
+ARCUS_DECLARE_OCEAN_PHASES(ocean_phases, REAL, int);
+ARCUS_DECLARE_OCEAN_DESC(ocean_desc, ocean_phases, REAL, int, ulong);
 #else
-ARCUS_DECLARE_OCEAN_DESC(arcus_ocean_desc, double, int32_t, uint64_t);
+ARCUS_DECLARE_OCEAN_PHASES(arcus_ocean_phases, double, int32_t);
+ARCUS_DECLARE_OCEAN_DESC(arcus_ocean_desc, arcus_ocean_phases, double, int32_t, uint64_t);
+#endif
+
+/* Ray marching (thesis §4.1.4, §4.2): the camera, the march and the estimate.  The
+ * `optics` buffer holds, per grid sample m (n of them): σ_t, exp(−σ_t Δt),
+ * exp(−σ_t Δt/2), the three scatterers' σ_s (3·n), then the phase tables.  Per light
+ * l, `light_tables` holds g_samples distances' rows of n reals, E[l][d][m] = I_l(λ_m)
+ * exp(−σ_t(λ_m) d) (the intensity that reaches distance d, elastic), then (inelastic)
+ * as many rows of G[l][d][m] = Σ_i I_l(λ_i) exp(−σ_t(λ_i) d) μ_j(λ_i) h_j(λ_m | λ_i)
+ * (λ_i/λ_m) Δλ / (4π) (eq. 4.5), d = g·g_step.                                    */
+#define ARCUS_DECLARE_OCEAN_RENDER_DESC(NAME, PHASES, R, I)                                       \
+  typedef struct NAME {                                                                           \
+    R eye[3], forward[3], right[3], up[3]; /* right/up scaled to the image plane at 1 */           \
+    R step;                    /* Δt [m]                                                     */   \
+    R band;                    /* Δλ of a grid sample [nm] (1 for one sample)                */   \
+    R g_step;                  /* distance between light-table rows [m]                      */   \
+    PHASES phases;                                                                                \
+    I width, height, count, steps, k, light_count, g_samples;                                     \
+    I first_pixel, end_pixel;  /* this launch's pixels                                       */   \
+    I single;                  /* 1: single scattering from the lights                       */   \
+  } NAME
+
+/* A stored photon in the map's power channels: power, grid sample, event. */
+#define ARCUS_OCEAN_MAP_CHANNELS 3
+
+#ifdef __OPENCL_C_VERSION__
+ARCUS_DECLARE_OCEAN_RENDER_DESC(ocean_render_desc, ocean_phases, REAL, int);
+#else
+ARCUS_DECLARE_OCEAN_RENDER_DESC(arcus_ocean_render_desc, arcus_ocean_phases, double, int32_t);
 #endif
 
 #endif /* ARCUS_OCEAN_DESC_H */

@@ -17,9 +17,6 @@
  * Features: ARCUS_USE_OCEAN_INELASTIC (the inelastic events), ARCUS_USE_OCEAN_BOUNDARIES
  * (surface, bottom, box), ARCUS_USE_OCEAN_DEPTHS (irradiance tallies at depths).   */
 
-#define OCEAN_PI RC(3.14159265358979323846)
-#define REAL3 ARCUS_CAT(REAL, 3)
-
 /* Two uniform draws of photon i's block `block`. */
 ARCUS_INLINE void ocean_draw2(ulong seed, ulong i, uint block, REAL* u0, REAL* u1) {
   arcus_u32 w[4];
@@ -104,12 +101,12 @@ ARCUS_INLINE REAL ocean_hg_cos(REAL g, REAL u) {
 }
 
 /* cos θ of scatterer s's phase function for a uniform u (thesis eq. 3.26, 3.28–3.29). */
-ARCUS_INLINE REAL ocean_phase_cos(const ocean_desc* d, __global const REAL* water, int s, REAL u) {
-  switch (d->phase_kind[s]) {
+ARCUS_INLINE REAL ocean_phase_cos(const ocean_phases* d, __global const REAL* water, int s, REAL u) {
+  switch (d->kind[s]) {
     case ARCUS_OCEAN_PHASE_RAYLEIGH_LIKE: {
       /* p ∝ 1 + a μ²: F(μ) = (μ + aμ³/3 + 1 + a/3) / (2 + 2a/3) = u, a cubic with one
        * real root (its derivative is positive): Cardano. */
-      const REAL a = d->phase_a[s];
+      const REAL a = d->a[s];
       const REAL c = (RC(2) * u - RC(1)) * (RC(1) + a / RC(3));
       if (a < RC(1e-12)) return c;
       const REAL p = RC(3) / a, q = RC(-3) * c / a;
@@ -117,16 +114,16 @@ ARCUS_INLINE REAL ocean_phase_cos(const ocean_desc* d, __global const REAL* wate
       return clamp(cbrt(-q / RC(2) + r) + cbrt(-q / RC(2) - r), RC(-1), RC(1));
     }
     case ARCUS_OCEAN_PHASE_HG:
-      return ocean_hg_cos(d->phase_gf[s], u);
+      return ocean_hg_cos(d->gf[s], u);
     case ARCUS_OCEAN_PHASE_TWO_TERM_HG: {
       /* the lobe by u, then u rescaled within the lobe's share: one draw for both */
-      const REAL z = d->phase_zeta[s];
-      if (u < z) return ocean_hg_cos(d->phase_gf[s], u / z);
-      return ocean_hg_cos(d->phase_gb[s], (u - z) / (RC(1) - z));
+      const REAL z = d->zeta[s];
+      if (u < z) return ocean_hg_cos(d->gf[s], u / z);
+      return ocean_hg_cos(d->gb[s], (u - z) / (RC(1) - z));
     }
     case ARCUS_OCEAN_PHASE_TABLE: {
-      const int n = d->phase_count[s];
-      __global const REAL* x = water + d->phase_offset[s];
+      const int n = d->count[s];
+      __global const REAL* x = water + d->offset[s];
       return ocean_sample_table(x, x + n, x + 2 * n, n, u);
     }
     default:
@@ -166,14 +163,22 @@ ARCUS_INLINE int ocean_roulette(const ocean_desc* d, __global const REAL* water,
 }
 
 #ifdef ARCUS_USE_OCEAN_BOUNDARIES
-/* Distance along dir to the nearest boundary, and which: 0 box, 1 surface, 2 bottom. */
-ARCUS_INLINE REAL ocean_boundary(const ocean_desc* d, REAL3 p, REAL3 dir, int* which) {
+/* Distance along dir to the nearest boundary, and which: 0 box (*face: the axis, +3
+ * for its upper face), 1 surface, 2 bottom. */
+ARCUS_INLINE REAL ocean_boundary(const ocean_desc* d, REAL3 p, REAL3 dir, int* which, int* face) {
   REAL best = (REAL)INFINITY;
   *which = 0;
+  *face = 0;
   const REAL pc[3] = {p.x, p.y, p.z}, dc[3] = {dir.x, dir.y, dir.z};
   for (int a = 0; a < 3; ++a) {
-    if (dc[a] > RC(0) && isfinite(d->box_hi[a])) best = fmin(best, fmax(RC(0), (d->box_hi[a] - pc[a]) / dc[a]));
-    if (dc[a] < RC(0) && isfinite(d->box_lo[a])) best = fmin(best, fmax(RC(0), (d->box_lo[a] - pc[a]) / dc[a]));
+    const int up = dc[a] > RC(0);
+    const REAL wall = up ? d->box_hi[a] : d->box_lo[a];
+    if (dc[a] == RC(0) || !isfinite(wall)) continue;
+    const REAL s = fmax(RC(0), (wall - pc[a]) / dc[a]);
+    if (s < best) {
+      best = s;
+      *face = a + 3 * up;
+    }
   }
   if (d->surface && dir.z > RC(0)) {
     const REAL s = fmax(RC(0), -p.z / dir.z);
@@ -232,7 +237,7 @@ __kernel void arcus_ocean_trace(__global const REAL* water, __global const REAL*
   const int r = (int)get_global_id(0);
   if (r >= d.rows) return;
   const ocean_desc* dp = &d;
-  __global REAL* t = tallies + (size_t)r * (size_t)ARCUS_OCEAN_TALLY_REALS(d.limit);
+  __global REAL* t = tallies + (size_t)r * (size_t)ARCUS_OCEAN_TALLY_REALS(d.bins);
 #ifdef ARCUS_USE_OCEAN_DEPTHS
   __global REAL* depth_row = depth_tallies + (size_t)r * (size_t)d.depth_count * (size_t)d.count * 3;
 #endif
@@ -270,7 +275,7 @@ __kernel void arcus_ocean_trace(__global const REAL* water, __global const REAL*
       if (d.surface) {
         p.z = RC(0);
         const REAL T = ocean_enter_water(dp, &dir);
-        t[ARCUS_OCEAN_T_ESCAPED(d.limit)] += power * (RC(1) - T); /* reflected by the surface */
+        t[ARCUS_OCEAN_T_ESCAPED(d.bins)] += power * (RC(1) - T); /* reflected by the surface */
         power *= T;
       } else if (kind == ARCUS_OCEAN_EMIT_DIRECTIONAL && L[8] > RC(0)) {
         /* a point of the beam's disc: radius R√u, uniform in area */
@@ -293,16 +298,19 @@ __kernel void arcus_ocean_trace(__global const REAL* water, __global const REAL*
       ocean_draw2(d.seed, i, 4 + 4 * leg, &uf, &ur);
       REAL s = sigma_t > RC(0) ? -log1p(-uf) / sigma_t : (REAL)INFINITY;
 #ifdef ARCUS_USE_OCEAN_BOUNDARIES
-      int which;
-      const REAL to_wall = ocean_boundary(dp, p, dir, &which);
+      int which, face;
+      const REAL to_wall = ocean_boundary(dp, p, dir, &which, &face);
       if (to_wall <= s) {
         if (!isfinite(to_wall)) {
-          t[ARCUS_OCEAN_T_ESCAPED(d.limit) + n] += power; /* out to infinity */
+          t[ARCUS_OCEAN_T_ESCAPED(d.bins) + min(n, d.bins)] += power; /* out to infinity */
           break;
         }
         REAL3 q = p + to_wall * dir;
-        if (which == 1) q.z = RC(0); /* exactly on the plane, so the tallies see it reached */
+        /* exactly on the plane it reached, so the depth tallies count the crossing */
+        if (which == 1) q.z = RC(0);
         if (which == 2) q.z = -d.bottom_depth;
+        if (which == 0 && face == 2) q.z = d.box_lo[2];
+        if (which == 0 && face == 5) q.z = d.box_hi[2];
 #ifdef ARCUS_USE_OCEAN_DEPTHS
         ocean_tally_depths(dp, depths, depth_row, p.z, q.z, to_wall, power, ocean_bin(dp, nm));
 #endif
@@ -311,12 +319,12 @@ __kernel void arcus_ocean_trace(__global const REAL* water, __global const REAL*
         ocean_draw2(d.seed, i, 5 + 4 * leg, &ub, &uc);
         ocean_draw2(d.seed, i, 6 + 4 * leg, &ud, &u1);
         if (which == 0) {
-          t[ARCUS_OCEAN_T_ESCAPED(d.limit) + n] += power;
+          t[ARCUS_OCEAN_T_ESCAPED(d.bins) + min(n, d.bins)] += power;
           break;
         }
         if (which == 1) { /* the surface from below: Fresnel reflection or escape */
           if (ub >= ocean_fresnel(dir.z, d.n_water, RC(1))) {
-            t[ARCUS_OCEAN_T_ESCAPED(d.limit) + n] += power;
+            t[ARCUS_OCEAN_T_ESCAPED(d.bins) + min(n, d.bins)] += power;
             break;
           }
           dir.z = -dir.z;
@@ -335,7 +343,7 @@ __kernel void arcus_ocean_trace(__global const REAL* water, __global const REAL*
       }
 #endif
       if (!isfinite(s)) { /* nothing to meet: an empty, unbounded medium */
-        t[ARCUS_OCEAN_T_ESCAPED(d.limit) + n] += power;
+        t[ARCUS_OCEAN_T_ESCAPED(d.bins) + min(n, d.bins)] += power;
         break;
       }
       const REAL3 q = p + s * dir;
@@ -352,7 +360,7 @@ __kernel void arcus_ocean_trace(__global const REAL* water, __global const REAL*
       REAL um, uphi;
       ocean_draw2(d.seed, i, 5 + 4 * leg, &um, &uphi);
       if (e == ARCUS_OCEAN_SCATTER_WATER || e == ARCUS_OCEAN_SCATTER_DETRITUS || e == ARCUS_OCEAN_SCATTER_PHYTO) {
-        dir = ocean_turn(dir, ocean_phase_cos(dp, water, e - ARCUS_OCEAN_SCATTER_WATER, um), RC(2) * OCEAN_PI * uphi);
+        dir = ocean_turn(dir, ocean_phase_cos(&d.phases, water, e - ARCUS_OCEAN_SCATTER_WATER, um), RC(2) * OCEAN_PI * uphi);
       }
 #ifdef ARCUS_USE_OCEAN_INELASTIC
       else if (e == ARCUS_OCEAN_RAMAN || e == ARCUS_OCEAN_FLUORESCE_PHYTO || e == ARCUS_OCEAN_FLUORESCE_CDOM) {
@@ -365,7 +373,7 @@ __kernel void arcus_ocean_trace(__global const REAL* water, __global const REAL*
         const REAL out_nm = ocean_emission_nm(dp, water, process, k, ue);
         const REAL ratio = nm / out_nm; /* energy of the new photon per old one */
         t[ARCUS_OCEAN_T_ABSORBED + e] += power * (RC(1) - ratio);
-        t[ARCUS_OCEAN_T_BY_INTERACTION + n] += power * (RC(1) - ratio);
+        t[ARCUS_OCEAN_T_BY_INTERACTION + min(n, d.bins)] += power * (RC(1) - ratio);
         power *= ratio;
         nm = out_nm;
         dir = ocean_turn((REAL3)(RC(0), RC(0), RC(1)), RC(1) - RC(2) * um, RC(2) * OCEAN_PI * uphi);
@@ -373,7 +381,7 @@ __kernel void arcus_ocean_trace(__global const REAL* water, __global const REAL*
 #endif
       else { /* absorption */
         t[ARCUS_OCEAN_T_ABSORBED + e] += power;
-        t[ARCUS_OCEAN_T_BY_INTERACTION + n] += power;
+        t[ARCUS_OCEAN_T_BY_INTERACTION + min(n, d.bins)] += power;
         const REAL3 moved = p - start;
         t[ARCUS_OCEAN_T_ABSORBED_R2] += power * dot(moved, moved);
         break;

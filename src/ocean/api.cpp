@@ -7,6 +7,9 @@
 
 #include "arcus/arcus_ocean.h"
 #include "core/call.h"
+#include "image/image_io.h"
+#include "ocean/render.h"
+#include "ocean/scene.h"
 #include "ocean/trace.h"
 #include "ocean/water.h"
 
@@ -124,6 +127,86 @@ void copy_out(const std::vector<T>& from, T* to) {
   if (to) std::copy(from.begin(), from.end(), to);
 }
 
+// What a setup and trace parameters say, as the engine takes it.
+struct TraceInput {
+  std::vector<ocean::Light> lights;
+  ocean::Medium medium;
+  ocean::TraceParams params;
+};
+
+TraceInput trace_input(const arcus_ocean_setup* setup, const arcus_ocean_trace_params* params) {
+  require(setup->light_count == 0 || setup->lights, "setup.lights is NULL but light_count is " +
+                                                        std::to_string(setup->light_count));
+  TraceInput in;
+  std::vector<ocean::Light>& lights = in.lights;
+  lights.resize(setup->light_count);
+  for (uint32_t l = 0; l < setup->light_count; ++l) {
+    const arcus_ocean_light& s = setup->lights[l];
+    ocean::Light& L = lights[l];
+    L.kind = static_cast<ocean::Light::Kind>(s.kind);
+    for (int a = 0; a < 3; ++a) {
+      L.position[a] = s.position[a];
+      L.direction[a] = s.direction[a];
+    }
+    L.half_angle_deg = s.half_angle_deg;
+    L.radius = s.radius;
+    L.spectrum = spectrum_of(s.spectrum, "lights[" + std::to_string(l) + "].spectrum");
+  }
+  ocean::Medium& m = in.medium;
+  m.surface = setup->surface != 0;
+  m.n_water = setup->n_water;
+  m.bottom_depth = setup->bottom_depth;
+  m.bottom_albedo = setup->bottom_albedo;
+  for (int a = 0; a < 3; ++a) {
+    m.box_lo[a] = setup->box_lo[a];
+    m.box_hi[a] = setup->box_hi[a];
+  }
+  ocean::TraceParams& p = in.params;
+  p.photons = params->photons;
+  p.max_interactions = static_cast<int>(std::min<uint32_t>(params->max_interactions, 1u << 20));
+  p.seed = params->seed;
+  p.store = params->store_photons != 0;
+  p.force_inelastic = params->force_inelastic != 0;
+  p.depths = copy_array(setup->depths, setup->depth_count, "setup.depths");
+  p.layer = setup->layer;
+  return in;
+}
+
+ocean::MarchParams march_of(const arcus_ocean_march& s) {
+  ocean::MarchParams m;
+  m.steps = static_cast<int>(std::min<uint32_t>(s.steps, 1u << 30));
+  m.distance = s.distance;
+  m.k = static_cast<int>(std::min<uint32_t>(s.k, 1u << 30));
+  m.estimator = static_cast<ocean::MarchParams::Estimator>(s.estimator);
+  m.single_scattering = s.single_scattering != 0;
+  m.multiple_scattering = s.multiple_scattering != 0;
+  m.exposure = s.exposure;
+  return m;
+}
+
+ocean::RenderJob* render_job(arcus_job_s* job) {
+  auto* r = dynamic_cast<ocean::RenderJob*>(job);
+  if (!r) arcus::fail(ARCUS_ERROR_INVALID_ARGUMENT, std::string("job is a ") + job->kind + " job, not an ocean render");
+  return r;
+}
+
+template <class Body>
+arcus_status on_render_job(arcus_job_t* job, Body&& body) {
+  return simple<arcus_job_s>(job, HandleType::Job, "job", [&](arcus_job_s* j) { body(render_job(j)); });
+}
+
+// Runs a render and hands its job out (a cancelled one too, with ARCUS_ERROR_CANCELLED).
+template <class Render>
+arcus_status finish_render(arcus_context_t* ctx, arcus_job_t** job, std::string* message, Render&& run) {
+  bool cancelled = false;
+  auto j = run(&cancelled);
+  arcus::retain_context(ctx);  // the job's reference
+  *job = j.release();
+  if (!cancelled) return ARCUS_SUCCESS;
+  *message = "the progress callback cancelled the render: the job holds the pixels done so far";
+  return ARCUS_ERROR_CANCELLED;
+}
+
 }  // namespace
 
 extern "C" {
@@ -222,42 +305,12 @@ arcus_status arcus_ocean_trace(arcus_context_t* ctx, arcus_water_t* water, const
     require_pointer(setup, "setup");
     require_pointer(params, "params");
     auto* w = arcus::api::object_of<arcus_water_s>(ctx, water, HandleType::Water, "water");
-    require(setup->light_count == 0 || setup->lights, "setup.lights is NULL but light_count is " +
-                                                          std::to_string(setup->light_count));
-    std::vector<ocean::Light> lights(setup->light_count);
-    for (uint32_t l = 0; l < setup->light_count; ++l) {
-      const arcus_ocean_light& s = setup->lights[l];
-      ocean::Light& L = lights[l];
-      L.kind = static_cast<ocean::Light::Kind>(s.kind);
-      for (int a = 0; a < 3; ++a) {
-        L.position[a] = s.position[a];
-        L.direction[a] = s.direction[a];
-      }
-      L.half_angle_deg = s.half_angle_deg;
-      L.radius = s.radius;
-      L.spectrum = spectrum_of(s.spectrum, "lights[" + std::to_string(l) + "].spectrum");
-    }
-    ocean::Medium m;
-    m.surface = setup->surface != 0;
-    m.n_water = setup->n_water;
-    m.bottom_depth = setup->bottom_depth;
-    m.bottom_albedo = setup->bottom_albedo;
-    for (int a = 0; a < 3; ++a) {
-      m.box_lo[a] = setup->box_lo[a];
-      m.box_hi[a] = setup->box_hi[a];
-    }
-    ocean::TraceParams p;
-    p.photons = params->photons;
-    p.max_interactions = static_cast<int>(std::min<uint32_t>(params->max_interactions, 1u << 20));
-    p.seed = params->seed;
-    p.store = params->store_photons != 0;
-    p.force_inelastic = params->force_inelastic != 0;
-    p.depths = copy_array(setup->depths, setup->depth_count, "setup.depths");
-    p.layer = setup->layer;
-    ocean::check_trace(lights, m, p);  // before the water is evaluated: cheap errors first
+    const TraceInput in = trace_input(setup, params);
+    ocean::check_trace(in.lights, in.medium, in.params);  // before the water is evaluated: cheap errors first
     const ocean::WaterTables tables = ocean::evaluate(w->water, grid_of(setup->grid));
     bool cancelled = false;
-    auto j = ocean::trace(ctx, tables, lights, m, p, params->progress, params->progress_user, &cancelled);
+    auto j = ocean::trace(ctx, tables, in.lights, in.medium, in.params, params->progress, params->progress_user,
+                          &cancelled);
     arcus::retain_context(ctx);  // the job's reference
     *job = j.release();
     if (!cancelled) return ARCUS_SUCCESS;
@@ -285,6 +338,7 @@ arcus_status arcus_job_get_ocean_tallies(arcus_job_t* job, arcus_ocean_tallies* 
       out->absorbed_by[e] = t.absorbed[e];
     }
     out->max_interactions = static_cast<uint32_t>(j->limit);
+    out->interaction_bins = static_cast<uint32_t>(j->tallies.absorbed_by_interaction.size() - 1);
   });
 }
 
@@ -314,6 +368,111 @@ arcus_status arcus_job_get_ocean_photons(arcus_job_t* job, size_t* count, double
     copy_out(s.powers, powers);
     copy_out(s.wavelengths, wavelengths);
     copy_out(s.events, events);
+  });
+}
+
+arcus_status arcus_ocean_march_init(arcus_ocean_march* march) {
+  return without_context([&] {
+    require_pointer(march, "march");
+    const ocean::MarchParams d;
+    *march = arcus_ocean_march{};
+    march->steps = static_cast<uint32_t>(d.steps);
+    march->distance = d.distance;
+    march->k = static_cast<uint32_t>(d.k);
+    march->estimator = d.estimator;
+    march->single_scattering = d.single_scattering;
+    march->multiple_scattering = d.multiple_scattering;
+    march->exposure = d.exposure;
+  });
+}
+
+arcus_status arcus_ocean_render(arcus_context_t* ctx, arcus_water_t* water, const arcus_ocean_setup* setup,
+                                const arcus_ocean_trace_params* params, const arcus_camera* camera,
+                                const arcus_ocean_march* march, arcus_job_t** job) {
+  return on<arcus_context_s>(ctx, HandleType::Context, "ctx", [&](arcus_context_s*, std::string* message) {
+    require_pointer(job, "job");
+    *job = nullptr;
+    require_pointer(setup, "setup");
+    require_pointer(params, "params");
+    require_pointer(camera, "camera");
+    require_pointer(march, "march");
+    auto* w = arcus::api::object_of<arcus_water_s>(ctx, water, HandleType::Water, "water");
+    const TraceInput in = trace_input(setup, params);
+    const ocean::MarchParams m = march_of(*march);
+    ocean::check_camera(*camera);
+    ocean::check_march(m);
+    ocean::check_trace(in.lights, in.medium, in.params);
+    const ocean::WaterTables tables = ocean::evaluate(w->water, grid_of(setup->grid));
+    return finish_render(ctx, job, message, [&](bool* cancelled) {
+      return ocean::render(ctx, tables, in.lights, in.medium, in.params, *camera, m, params->progress,
+                           params->progress_user, cancelled);
+    });
+  });
+}
+
+arcus_status arcus_ocean_render_scene(arcus_scene_t* scene, arcus_progress_callback progress, void* user,
+                                      arcus_job_t** job) {
+  return on<arcus_scene_s>(scene, HandleType::Scene, "scene", [&](arcus_scene_s* s, std::string* message) {
+    require_pointer(job, "job");
+    *job = nullptr;
+    const ocean::OceanSceneDesc& d = ocean::ocean_scene(s)->desc;
+    require(d.has_camera, s->name + ": the scene has no \"view\" to render");
+    const ocean::WaterTables tables = ocean::evaluate(d.water, d.grid);
+    return finish_render(s->owner(), job, message, [&](bool* cancelled) {
+      return ocean::render(s->owner(), tables, d.lights, d.medium, d.trace, d.camera, d.march, progress, user,
+                           cancelled);
+    });
+  });
+}
+
+arcus_status arcus_job_get_ocean_render_stats(arcus_job_t* job, arcus_ocean_render_stats* stats) {
+  return on_render_job(job, [&](ocean::RenderJob* j) {
+    require_pointer(stats, "stats");
+    const ocean::RenderStats& r = j->render_stats;
+    *stats = {r.trace_seconds, r.map_seconds, r.estimate_seconds, r.total_seconds, r.photons_stored};
+  });
+}
+
+arcus_status arcus_job_get_ocean_image(arcus_job_t* job, uint32_t* width, uint32_t* height, uint32_t* samples,
+                                       double* wavelengths, float* rgb, double* spectral) {
+  return on_render_job(job, [&](ocean::RenderJob* j) {
+    if (width) *width = j->width;
+    if (height) *height = j->height;
+    if (samples) *samples = static_cast<uint32_t>(j->wavelengths.size());
+    copy_out(j->wavelengths, wavelengths);
+    copy_out(j->rgb, rgb);
+    copy_out(j->spectral, spectral);
+  });
+}
+
+arcus_status arcus_job_write_ocean_image(arcus_job_t* job, const char* exr_path, const char* png_path,
+                                         int32_t spectral_bands) {
+  return on_render_job(job, [&](ocean::RenderJob* j) {
+    arcus::image::Image img;
+    img.width = static_cast<int>(j->width);
+    img.height = static_cast<int>(j->height);
+    img.channels = {"R", "G", "B"};
+    const size_t n = j->wavelengths.size(), pixels = size_t(j->width) * j->height;
+    if (spectral_bands)
+      for (double nm : j->wavelengths) {
+        char name[32];
+        std::snprintf(name, sizeof name, "L%g", nm);
+        img.channels.push_back(name);
+      }
+    const size_t c = img.channels.size();
+    img.pixels.resize(pixels * c);
+    for (size_t p = 0; p < pixels; ++p) {
+      for (int k = 0; k < 3; ++k) img.pixels[p * c + k] = j->rgb[3 * p + k];
+      if (spectral_bands)
+        for (size_t m = 0; m < n; ++m) img.pixels[p * c + 3 + m] = static_cast<float>(j->spectral[p * n + m]);
+    }
+    if (exr_path) arcus::image::write_exr(exr_path, img);
+    if (png_path) {
+      img.channels.resize(3);
+      std::vector<float> rgb(j->rgb);
+      img.pixels = std::move(rgb);
+      arcus::image::write_png(png_path, img, j->exposure);
+    }
   });
 }
 

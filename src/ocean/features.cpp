@@ -11,7 +11,9 @@ namespace {
 const FeatureTable kTable{"ocean",
                           {{ARCUS_FEATURE_OCEAN_INELASTIC, "OCEAN_INELASTIC", "-D ARCUS_USE_OCEAN_INELASTIC"},
                            {ARCUS_FEATURE_OCEAN_BOUNDARIES, "OCEAN_BOUNDARIES", "-D ARCUS_USE_OCEAN_BOUNDARIES"},
-                           {ARCUS_FEATURE_OCEAN_DEPTHS, "OCEAN_DEPTHS", "-D ARCUS_USE_OCEAN_DEPTHS"}}};
+                           {ARCUS_FEATURE_OCEAN_DEPTHS, "OCEAN_DEPTHS", "-D ARCUS_USE_OCEAN_DEPTHS"},
+                           {ARCUS_FEATURE_OCEAN_PHOTON_MAP, "OCEAN_PHOTON_MAP", "-D ARCUS_USE_OCEAN_PHOTON_MAP"},
+                           {ARCUS_FEATURE_OCEAN_BEAM, "OCEAN_BEAM", "-D ARCUS_USE_OCEAN_BEAM"}}};
 const FeatureTableEntry kRegistered(&kTable);
 
 const KernelSource kTrace{"ocean/trace", {"common/real.h", "common/philox.h", "ocean/ocean_desc.h", "ocean/trace.cl"}, ""};

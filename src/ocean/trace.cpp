@@ -68,6 +68,37 @@ bool bounded(const Medium& m) {
 
 }  // namespace
 
+void append_phases(const WaterTables& w, std::vector<double>* out, arcus_ocean_phases* p) {
+  std::vector<double>& buf = *out;
+  for (int s = 0; s < kScattererCount; ++s) {
+    const Phase& ph = w.phase[s];
+    p->kind[s] = ph.kind;
+    p->a[s] = ph.a;
+    p->gf[s] = ph.g_forward;
+    p->gb[s] = ph.g_backward;
+    p->zeta[s] = ph.forward_weight;
+    p->offset[s] = p->count[s] = 0;
+    if (ph.kind != Phase::table) continue;
+    // cosines, the density normalised over the sphere's cosines (∫ p dμ = 1 with
+    // linear interpolation), its cumulative integral
+    const size_t m = ph.cosines.size();
+    std::vector<double> pdf(ph.values), cdf(m, 0.0);
+    for (size_t j = 1; j < m; ++j)
+      cdf[j] = cdf[j - 1] + 0.5 * (pdf[j - 1] + pdf[j]) * (ph.cosines[j] - ph.cosines[j - 1]);
+    const double total = cdf.back();
+    for (size_t j = 0; j < m; ++j) {
+      pdf[j] /= total;
+      cdf[j] /= total;
+    }
+    cdf.back() = 1;
+    p->offset[s] = static_cast<int32_t>(buf.size());
+    p->count[s] = static_cast<int32_t>(m);
+    buf.insert(buf.end(), ph.cosines.begin(), ph.cosines.end());
+    buf.insert(buf.end(), pdf.begin(), pdf.end());
+    buf.insert(buf.end(), cdf.begin(), cdf.end());
+  }
+}
+
 std::vector<double> water_buffer(const WaterTables& w, bool inelastic, arcus_ocean_desc* d) {
   const size_t n = w.grid.count;
   std::vector<double> buf;
@@ -91,33 +122,7 @@ std::vector<double> water_buffer(const WaterTables& w, bool inelastic, arcus_oce
         buf.insert(buf.end(), 2 * n * n, 0.0);
       }
     }
-  for (int s = 0; s < kScattererCount; ++s) {
-    const Phase& ph = w.phase[s];
-    d->phase_kind[s] = ph.kind;
-    d->phase_a[s] = ph.a;
-    d->phase_gf[s] = ph.g_forward;
-    d->phase_gb[s] = ph.g_backward;
-    d->phase_zeta[s] = ph.forward_weight;
-    d->phase_offset[s] = d->phase_count[s] = 0;
-    if (ph.kind != Phase::table) continue;
-    // cosines, the density normalised over the sphere's cosines (∫ p dμ = 1 with
-    // linear interpolation), its cumulative integral
-    const size_t m = ph.cosines.size();
-    std::vector<double> pdf(ph.values), cdf(m, 0.0);
-    for (size_t j = 1; j < m; ++j)
-      cdf[j] = cdf[j - 1] + 0.5 * (pdf[j - 1] + pdf[j]) * (ph.cosines[j] - ph.cosines[j - 1]);
-    const double total = cdf.back();
-    for (size_t j = 0; j < m; ++j) {
-      pdf[j] /= total;
-      cdf[j] /= total;
-    }
-    cdf.back() = 1;
-    d->phase_offset[s] = static_cast<int32_t>(buf.size());
-    d->phase_count[s] = static_cast<int32_t>(m);
-    buf.insert(buf.end(), ph.cosines.begin(), ph.cosines.end());
-    buf.insert(buf.end(), pdf.begin(), pdf.end());
-    buf.insert(buf.end(), cdf.begin(), cdf.end());
-  }
+  append_phases(w, &buf, &d->phases);
   if (buf.empty()) buf.push_back(0);  // OpenCL buffers are never empty
   return buf;
 }
@@ -218,14 +223,21 @@ arcus_features trace_features(const WaterTables& water, const Medium& medium, co
   return f;
 }
 
-std::unique_ptr<TraceJob> trace(arcus_context_t* ctx, const WaterTables& water, const std::vector<Light>& lights_in,
+std::unique_ptr<TraceJob> trace(arcus_context_t* ctx, const WaterTables& water, const std::vector<Light>& lights,
                                 const Medium& medium, const TraceParams& params, arcus_progress_callback progress,
                                 void* user, bool* cancelled) {
+  auto job = std::make_unique<TraceJob>(ctx);
+  trace_into(job.get(), ctx, water, lights, medium, params, progress, user, cancelled);
+  return job;
+}
+
+void trace_into(TraceJob* job, arcus_context_t* ctx, const WaterTables& water, const std::vector<Light>& lights_in,
+                const Medium& medium, const TraceParams& params, arcus_progress_callback progress, void* user,
+                bool* cancelled) {
   check_trace(lights_in, medium, params);
   if (!ctx->info.fp64) fail(ARCUS_ERROR_UNSUPPORTED, "the ocean engine needs double precision (cl_khr_fp64)");
   const Grid& grid = water.grid;
   const size_t n = grid.count;
-  auto job = std::make_unique<TraceJob>(ctx);
   job->water = water;
   job->limit = params.max_interactions;
   job->depths = params.depths;
@@ -274,13 +286,14 @@ std::unique_ptr<TraceJob> trace(arcus_context_t* ctx, const WaterTables& water, 
   d.seed = params.seed;
   d.count = grid.count;
   d.limit = params.max_interactions;
+  d.bins = std::min(d.limit, ARCUS_OCEAN_INTERACTION_BINS);
   d.light_count = static_cast<int32_t>(lights.size());
   d.surface = medium.surface;
   d.store = params.store;
   d.rows = tally_rows(ctx, params.photons);
   d.depth_count = static_cast<int32_t>(params.depths.size());
 
-  const size_t rows = d.rows, tally_reals = ARCUS_OCEAN_TALLY_REALS(d.limit);
+  const size_t rows = d.rows, tally_reals = ARCUS_OCEAN_TALLY_REALS(d.bins);
   const size_t depth_reals = params.depths.size() * n * 3;
   const size_t store_slots = params.store ? params.photons * (d.limit - 1) : 0;
   check_device_allocation(ctx, std::max<double>(store_slots, 1) * ARCUS_OCEAN_PHOTON_REALS * sizeof(double),
@@ -358,9 +371,9 @@ std::unique_ptr<TraceJob> trace(arcus_context_t* ctx, const WaterTables& water, 
     t.absorbed[e] = sum[ARCUS_OCEAN_T_ABSORBED + e];
   }
   t.absorbed_by_interaction.assign(sum.begin() + ARCUS_OCEAN_T_BY_INTERACTION,
-                                   sum.begin() + ARCUS_OCEAN_T_BY_INTERACTION + d.limit + 1);
-  t.escaped_by_interaction.assign(sum.begin() + ARCUS_OCEAN_T_ESCAPED(d.limit),
-                                  sum.begin() + ARCUS_OCEAN_T_ESCAPED(d.limit) + d.limit + 1);
+                                   sum.begin() + ARCUS_OCEAN_T_BY_INTERACTION + d.bins + 1);
+  t.escaped_by_interaction.assign(sum.begin() + ARCUS_OCEAN_T_ESCAPED(d.bins),
+                                  sum.begin() + ARCUS_OCEAN_T_ESCAPED(d.bins) + d.bins + 1);
 
   if (depth_reals) {
     std::vector<double> dr(rows * depth_reals);
@@ -391,7 +404,6 @@ std::unique_ptr<TraceJob> trace(arcus_context_t* ctx, const WaterTables& water, 
       sp.events.push_back(static_cast<int32_t>(x[8]));
     }
   }
-  return job;
 }
 
 }  // namespace arcus::ocean

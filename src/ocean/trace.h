@@ -82,7 +82,7 @@ struct StoredPhotons {
 };
 
 struct TraceJob : arcus_job_s {
-  explicit TraceJob(arcus_context_t* ctx) : arcus_job_s(ctx, "ocean trace") {}
+  explicit TraceJob(arcus_context_t* ctx, const char* kind = "ocean trace") : arcus_job_s(ctx, kind) {}
   WaterTables water;
   int limit = 5;
   Tallies tallies;
@@ -97,6 +97,15 @@ struct TraceJob : arcus_job_s {
 std::unique_ptr<TraceJob> trace(arcus_context_t* ctx, const WaterTables& water, const std::vector<Light>& lights,
                                 const Medium& medium, const TraceParams& params, arcus_progress_callback progress,
                                 void* user, bool* cancelled);
+
+// The same into an existing job (a render job is a trace job with an image).
+void trace_into(TraceJob* job, arcus_context_t* ctx, const WaterTables& water, const std::vector<Light>& lights,
+                const Medium& medium, const TraceParams& params, arcus_progress_callback progress, void* user,
+                bool* cancelled);
+
+// The scatterers' phase functions for the kernels: their parameters into *phases, the
+// tabulated ones (cosines, density over cosines normalised to 1, CDF) appended to *buf.
+void append_phases(const WaterTables& water, std::vector<double>* buf, arcus_ocean_phases* phases);
 
 // The kernel's water buffer (kernels/ocean/ocean_desc.h) and the desc fields it fixes
 // (the active events, the inelastic tables when `inelastic`, the phases); the kernel

@@ -205,7 +205,25 @@ class OceanTraceParamsStruct(ctypes.Structure):
 class OceanTalliesStruct(ctypes.Structure):
     _fields_ = [(name, c_uint64) for name in ("photons", "interactions", "stored")] + [
         (name, c_double) for name in ("emitted", "past_limit", "bottom", "escaped", "absorbed")] + [
-        (name, c_double * 10) for name in ("count", "arriving", "absorbed_by")] + [("max_interactions", c_uint32)]
+        (name, c_double * 10) for name in ("count", "arriving", "absorbed_by")] + [
+        ("max_interactions", c_uint32), ("interaction_bins", c_uint32)]
+
+class OceanMarchStruct(ctypes.Structure):
+    _fields_ = [
+        ("steps", c_uint32),
+        ("distance", c_double),
+        ("k", c_uint32),
+        ("estimator", c_int32),
+        ("single_scattering", c_int32),
+        ("multiple_scattering", c_int32),
+        ("exposure", c_double),
+    ]
+
+
+class OceanRenderStatsStruct(ctypes.Structure):
+    _fields_ = [(name, c_double) for name in ("trace_seconds", "map_seconds", "estimate_seconds", "total_seconds")] + [
+        ("photons_stored", c_uint64)]
+
 
 ERROR_CALLBACK = ctypes.CFUNCTYPE(None, c_void_p, c_int, c_char_p)
 
@@ -307,6 +325,19 @@ _PROTOTYPES = {
     "arcus_job_get_ocean_tallies": (_status, [_handle, POINTER(OceanTalliesStruct)]),
     "arcus_job_get_ocean_by_interaction": (_status, [_handle, _dvec, _dvec]),
     "arcus_job_get_ocean_irradiance": (_status, [_handle, _dvec, _dvec, _dvec]),
+    "arcus_ocean_march_init": (_status, [POINTER(OceanMarchStruct)]),
+    "arcus_ocean_render": (
+        _status,
+        [_handle, _handle, POINTER(OceanSetupStruct), POINTER(OceanTraceParamsStruct), POINTER(CameraStruct),
+         POINTER(OceanMarchStruct), _out_handle],
+    ),
+    "arcus_ocean_render_scene": (_status, [_handle, PROGRESS_CALLBACK, c_void_p, _out_handle]),
+    "arcus_job_get_ocean_render_stats": (_status, [_handle, POINTER(OceanRenderStatsStruct)]),
+    "arcus_job_get_ocean_image": (
+        _status,
+        [_handle, POINTER(c_uint32), POINTER(c_uint32), POINTER(c_uint32), _dvec, POINTER(ctypes.c_float), _dvec],
+    ),
+    "arcus_job_write_ocean_image": (_status, [_handle, c_char_p, c_char_p, c_int32]),
     "arcus_job_get_ocean_photons": (
         _status,
         [_handle, POINTER(c_size_t), _dvec, _dvec, _dvec, _dvec, POINTER(c_int32)],

@@ -16,6 +16,7 @@ Spectra are a number (flat), a pair ``(wavelengths_nm, values)`` or a dict with 
 ``nm`` and ``values``.  Units: metres, nanometres, watts.
 """
 
+import ctypes
 import math
 from ctypes import byref, c_double, c_int32, c_size_t, c_uint64, c_void_p
 from dataclasses import dataclass, field
@@ -362,7 +363,7 @@ def _read_trace(ctx, job, grid, depths, store):
     tallies = {name: getattr(t, name) for name, _ in t._fields_ if name not in ("count", "arriving", "absorbed_by")}
     for name in ("count", "arriving", "absorbed_by"):
         tallies[name] = np.array(getattr(t, name)[:])
-    m = t.max_interactions + 1
+    m = t.interaction_bins + 1
     absorbed, escaped = np.zeros(m), np.zeros(m)
     ctx._check(lib.arcus_job_get_ocean_by_interaction(job, _lib.ptr(absorbed), _lib.ptr(escaped)))
     n = grid.count
@@ -419,3 +420,99 @@ def diffuse_attenuation(depths, irradiance):
     e = np.asarray(irradiance, dtype=np.float64)
     with np.errstate(divide="ignore", invalid="ignore"):
         return -np.diff(np.log(e), axis=0) / np.diff(depths)[:, None]
+
+
+@dataclass(frozen=True)
+class OceanImage:
+    """A rendered underwater image: ``image`` (H, W, 3) linear sRGB float32, ``spectral``
+    (H, W, n) radiance [W/m²/sr/nm] at ``wavelengths``, ``stats`` (per-stage seconds,
+    photons stored), ``features`` (kernel features compiled), ``tallies`` (where the
+    photons' energy went)."""
+
+    image: np.ndarray
+    spectral: np.ndarray
+    wavelengths: np.ndarray
+    stats: dict
+    features: frozenset
+    tallies: dict
+
+
+def _read_image(ctx, job, exr, png, spectral_bands):
+    w, h, n = ctypes.c_uint32(), ctypes.c_uint32(), ctypes.c_uint32()
+    ctx._check(lib.arcus_job_get_ocean_image(job, byref(w), byref(h), byref(n), None, None, None))
+    rgb = np.zeros((h.value, w.value, 3), dtype=np.float32)
+    spec = np.zeros((h.value, w.value, n.value))
+    nm = np.zeros(n.value)
+    ctx._check(lib.arcus_job_get_ocean_image(job, None, None, None, _lib.ptr(nm), _lib.ptr(rgb, ctypes.c_float),
+                                             _lib.ptr(spec)))
+    if exr is not None or png is not None:
+        from ._args import to_path
+        ctx._check(lib.arcus_job_write_ocean_image(job, None if exr is None else to_path(exr, "exr"),
+                                                    None if png is None else to_path(png, "png"),
+                                                    int(bool(spectral_bands))))
+    rs = _lib.OceanRenderStatsStruct()
+    ctx._check(lib.arcus_job_get_ocean_render_stats(job, byref(rs)))
+    stats = {name: getattr(rs, name) for name, _ in rs._fields_}
+    js = _lib.JobStatsStruct()
+    ctx._check(lib.arcus_job_get_stats(job, byref(js)))
+    stats.update({"kernel_seconds": js.kernel_seconds, "build_seconds": js.build_seconds})
+    features = c_uint64()
+    ctx._check(lib.arcus_job_get_features(job, byref(features)))
+    t = _lib.OceanTalliesStruct()
+    ctx._check(lib.arcus_job_get_ocean_tallies(job, byref(t)))
+    tallies = {name: getattr(t, name) for name, _ in t._fields_ if name not in ("count", "arriving", "absorbed_by")}
+    return OceanImage(image=rgb, spectral=spec, wavelengths=nm, stats=stats,
+                      features=_lib.feature_names(features.value), tallies=tallies)
+
+
+def render(scene, *, photons=None, k=None, steps=None, estimator=None, exr=None, png=None, spectral=False,
+           progress=None, context=None):
+    """Renders an ocean scene file (scenes/README.md, "Ocean scenes"; read and checked
+    by the library) — its "view" — and returns an :class:`OceanImage`; writes ``exr``
+    (linear; with ``spectral``, a channel per wavelength) and ``png`` (sRGB) if given.
+    ``photons``, ``k``, ``steps``, ``estimator`` ("per_step" or "beam") override the
+    scene's."""
+    import json
+    import os
+    import tempfile
+    from ._args import to_path
+    overrides = dict(photons=photons, k=k, steps=steps, estimator=estimator)
+    if any(v is not None for v in overrides.values()):
+        # The library reads scene files: the overrides go through a copy beside it.
+        with open(scene) as f:
+            doc = json.load(f)
+        if photons is not None:
+            doc.setdefault("photons", {})["count"] = int(photons)
+        march = doc.setdefault("view", {}).setdefault("march", {})
+        if k is not None:
+            march["k"] = int(k)
+        if steps is not None:
+            march["steps"] = int(steps)
+        if estimator is not None:
+            march["estimator"] = estimator
+        # Ocean scenes name no other files, so the copy may live anywhere.
+        with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
+            json.dump(doc, f)
+        try:
+            return render(f.name, exr=exr, png=png, spectral=spectral, progress=progress, context=context)
+        finally:
+            os.unlink(f.name)
+    from .context import _check_progress
+    _check_progress(progress)
+    ctx, owned = _context(context)
+    try:
+        handle = c_void_p()
+        ctx._check(lib.arcus_scene_load(ctx._handle, to_path(scene, "scene"), byref(handle)))
+        try:
+            def start(callback, job_out):
+                return lib.arcus_ocean_render_scene(handle, callback, None, job_out)
+
+            result = ctx._run_job(start, progress, False, "arcus_ocean_render_scene",
+                                  reader=lambda job: _read_image(ctx, job, exr, png, spectral))
+        finally:
+            lib.arcus_scene_release(handle)
+        return result
+    finally:
+        if owned:
+            ctx.close()
+

@@ -1,0 +1,217 @@
+/* Radiance through water by ray marching (thesis §4.1.4, §4.2, eq. 4.5–4.6): along
+ * each camera ray, at `steps` midpoints, the light scattered toward the camera —
+ * single scattering straight from the lights (elastic, and inelastic through the
+ * wavelength redistribution, eq. 4.5) and multiple scattering from the photon map
+ * (eq. 4.6) — attenuated back to the camera, per grid sample.  The map holds photons
+ * stored at scattering events from the second interaction on, with the power and
+ * wavelength they leave with, so inelastic re-emission is already in their
+ * wavelengths: the estimate weighs each by its scatterer's phase function (isotropic
+ * for an inelastic event).
+ *
+ * Two estimates of the multiple scattering:
+ *   per step (the thesis'): the k nearest photons of each march point,
+ *     Σ p Φ / (4/3 π r_k³);
+ *   beam (ARCUS_USE_OCEAN_BEAM; Jarosz, Zwicker & Jensen 2008): every photon whose
+ *     sphere of radius r_i (its own k-nearest distance) the ray passes through,
+ *     Σ p Φ T(t_i) / (π r_i²), found in one BVH traversal per ray.
+ *
+ * One pixel per work-item, scalar (a ray's photons and BVH branches differ from its
+ * neighbours').  The pixel's spectrum accumulates in `radiance` (count reals per
+ * pixel) and its transmittance to the camera in `scratch`, both global, since a
+ * spectrum of hundreds of samples does not fit in private memory.
+ *
+ * Host prepends: common/real.h, bvh/bvh_desc.h, photon/photon_desc.h,
+ * photon/photon_map.h, ocean/ocean_desc.h.                                        */
+
+/* Scatterer s's phase function at cos θ = mu (thesis eq. 3.26, 3.28–3.29), per sr. */
+ARCUS_INLINE REAL ocean_hg_value(REAL g, REAL mu) {
+  const REAL den = RC(1) + g * g - RC(2) * g * mu;
+  return (RC(1) - g * g) / (RC(4) * OCEAN_PI * den * sqrt(den));
+}
+
+ARCUS_INLINE REAL ocean_phase_value(const ocean_phases* p, __global const REAL* optics, int s, REAL mu) {
+  switch (p->kind[s]) {
+    case ARCUS_OCEAN_PHASE_RAYLEIGH_LIKE:
+      return (RC(1) + p->a[s] * mu * mu) / (RC(4) * OCEAN_PI * (RC(1) + p->a[s] / RC(3)));
+    case ARCUS_OCEAN_PHASE_HG:
+      return ocean_hg_value(p->gf[s], mu);
+    case ARCUS_OCEAN_PHASE_TWO_TERM_HG:
+      return p->zeta[s] * ocean_hg_value(p->gf[s], mu) + (RC(1) - p->zeta[s]) * ocean_hg_value(p->gb[s], mu);
+    case ARCUS_OCEAN_PHASE_TABLE: {
+      const int n = p->count[s];
+      __global const REAL* x = optics + p->offset[s];
+      __global const REAL* pdf = x + n;
+      int lo = 0, hi = n - 1;
+      while (hi - lo > 1) {
+        const int mid = (lo + hi) / 2;
+        if (x[mid] <= mu) lo = mid;
+        else hi = mid;
+      }
+      const REAL t = clamp((mu - x[lo]) / (x[hi] - x[lo]), RC(0), RC(1));
+      return (pdf[lo] + t * (pdf[hi] - pdf[lo])) / (RC(2) * OCEAN_PI); /* density in μ over 2π */
+    }
+    default:
+      return RC(1) / (RC(4) * OCEAN_PI);
+  }
+}
+
+/* A stored photon's phase weight toward the camera: its scatterer's phase function at
+ * the angle between its arriving direction and the direction toward the camera;
+ * isotropic for an inelastic re-emission. */
+ARCUS_INLINE REAL ocean_photon_phase(const ocean_phases* p, __global const REAL* optics, int event, REAL mu) {
+  if (event >= ARCUS_OCEAN_SCATTER_WATER) return ocean_phase_value(p, optics, event - ARCUS_OCEAN_SCATTER_WATER, mu);
+  return RC(1) / (RC(4) * OCEAN_PI);
+}
+
+#define OCEAN_MAP(c, slot) PHOTON(photons, map, c, slot)
+
+__kernel void arcus_ocean_render(__global const REAL* optics, __global const REAL* lights,
+                                 __global const REAL* light_tables, __global const bvh_node* nodes,
+                                 __global const REAL* photons, const photon_map_desc map,
+                                 __global const REAL* radii, const ocean_render_desc rd,
+                                 __global REAL* radiance, __global REAL* scratch) {
+  const int pixel = rd.first_pixel + (int)get_global_id(0);
+  if (pixel >= rd.end_pixel) return;
+  const int n = rd.count;
+  __global REAL* out = radiance + (size_t)pixel * (size_t)n;
+  __global REAL* T = scratch + (size_t)(pixel - rd.first_pixel) * (size_t)n;
+  __global const REAL* sigma_t = optics;
+  __global const REAL* step_factor = optics + n;
+  __global const REAL* sigma_s = optics + 3 * n;
+  const ocean_phases* phases = &rd.phases;
+
+  /* The ray through the pixel's centre. */
+  const int px = pixel % rd.width, py = pixel / rd.width;
+  const REAL sx = RC(2) * ((REAL)px + RC(0.5)) / (REAL)rd.width - RC(1);
+  const REAL sy = RC(1) - RC(2) * ((REAL)py + RC(0.5)) / (REAL)rd.height;
+  const REAL3 eye = (REAL3)(rd.eye[0], rd.eye[1], rd.eye[2]);
+  const REAL3 dir = normalize((REAL3)(rd.forward[0], rd.forward[1], rd.forward[2]) +
+                              sx * (REAL3)(rd.right[0], rd.right[1], rd.right[2]) +
+                              sy * (REAL3)(rd.up[0], rd.up[1], rd.up[2]));
+  const REAL per_nm = RC(1) / rd.band;
+
+  for (int m = 0; m < n; ++m) {
+    out[m] = RC(0);
+    T[m] = optics[2 * n + m]; /* exp(−σ_t Δt/2): the first midpoint */
+  }
+#ifdef ARCUS_USE_OCEAN_PHOTON_MAP
+#ifndef ARCUS_USE_OCEAN_BEAM
+  REAL d2[ARCUS_PHOTON_MAX_K];
+  int slot[ARCUS_PHOTON_MAX_K];
+  REAL bound = (REAL)INFINITY; /* the k-th nearest distance at the last step + Δt */
+#endif
+#endif
+
+  for (int s = 0; s < rd.steps; ++s) {
+    const REAL t = ((REAL)s + RC(0.5)) * rd.step;
+    const REAL3 x = eye + t * dir;
+    /* ---- single scattering from the lights (eq. 4.5 and its elastic part) */
+    if (rd.single) {
+      for (int l = 0; l < rd.light_count; ++l) {
+        __global const REAL* L = lights + (size_t)l * ARCUS_OCEAN_LIGHT_REALS;
+        const REAL3 to_x = x - (REAL3)(L[1], L[2], L[3]);
+        const REAL dist = length(to_x);
+        if (!(dist > RC(0))) continue;
+        const REAL3 wi = to_x / dist; /* the light's propagation at x */
+        if ((int)L[0] == ARCUS_OCEAN_EMIT_SPOT && dot(wi, (REAL3)(L[4], L[5], L[6])) < L[7]) continue;
+        const REAL mu = -dot(wi, dir); /* toward the camera: −dir */
+        const REAL pw = ocean_phase_value(phases, optics, 0, mu), pd = ocean_phase_value(phases, optics, 1, mu),
+                   pp = ocean_phase_value(phases, optics, 2, mu);
+        /* the light tables at this distance (rows g, g + 1; beyond the last: its last) */
+        const REAL gx = fmin(dist / rd.g_step, (REAL)(rd.g_samples - 1));
+        const int g0 = min((int)gx, rd.g_samples - 2);
+        const REAL gt = gx - (REAL)g0;
+        __global const REAL* E = light_tables + ((size_t)l * (size_t)rd.g_samples * 2 + (size_t)g0) * (size_t)n;
+        const REAL w = rd.step / (dist * dist);
+        for (int m = 0; m < n; ++m) {
+          const REAL e = E[m] + gt * (E[n + m] - E[m]);
+          REAL in = (sigma_s[m] * pw + sigma_s[n + m] * pd + sigma_s[2 * n + m] * pp) * e;
+#ifdef ARCUS_USE_OCEAN_INELASTIC
+          __global const REAL* G = E + (size_t)rd.g_samples * (size_t)n;
+          in += G[m] + gt * (G[n + m] - G[m]);
+#endif
+          out[m] += T[m] * in * w;
+        }
+      }
+    }
+#ifdef ARCUS_USE_OCEAN_PHOTON_MAP
+#ifndef ARCUS_USE_OCEAN_BEAM
+    /* ---- multiple scattering: the k nearest photons (eq. 4.6) */
+    /* The last step's k photons lie within r_last + Δt of this point (triangle
+     * inequality), so that bound loses none of the k nearest and prunes the search. */
+    const int found = photon_knn(nodes, photons, map, x.x, x.y, x.z, RC(0), RC(0), RC(0), rd.k, bound * bound, d2,
+                                 slot);
+    if (found > 0) {
+      const REAL r = sqrt(d2[0]);
+      bound = found == rd.k ? r + rd.step * RC(1.000001) : (REAL)INFINITY;
+      const REAL scale = rd.step * per_nm / (RC(4) / RC(3) * OCEAN_PI * r * r * r);
+      for (int i = 0; i < found; ++i) {
+        const int q = slot[i];
+        const REAL mu = -(OCEAN_MAP(ARCUS_PHOTON_DIRECTION, q) * dir.x + OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 1, q) * dir.y +
+                          OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 2, q) * dir.z);
+        const int b = (int)OCEAN_MAP(ARCUS_PHOTON_POWER + 1, q);
+        const REAL p = ocean_photon_phase(phases, optics, (int)OCEAN_MAP(ARCUS_PHOTON_POWER + 2, q), mu);
+        out[b] += T[b] * p * OCEAN_MAP(ARCUS_PHOTON_POWER, q) * scale;
+      }
+    }
+#endif
+#endif
+    for (int m = 0; m < n; ++m) T[m] *= step_factor[m];
+  }
+
+#ifdef ARCUS_USE_OCEAN_BEAM
+  /* ---- multiple scattering: the beam estimate, one traversal of the photon spheres */
+  const REAL length_max = rd.step * (REAL)rd.steps;
+  const REAL3 inv = (REAL3)(RC(1) / dir.x, RC(1) / dir.y, RC(1) / dir.z);
+  int stack[ARCUS_BVH_MAX_DEPTH];
+  int top = 0, node = 0;
+  if (map.count > 0)
+    for (;;) {
+      __global const bvh_node* nd = nodes + node;
+      /* slab test of the node's box against the segment [0, length_max] */
+      const REAL3 lo = ((REAL3)(nd->lo[0], nd->lo[1], nd->lo[2]) - eye) * inv;
+      const REAL3 hi = ((REAL3)(nd->hi[0], nd->hi[1], nd->hi[2]) - eye) * inv;
+      const REAL3 a = fmin(lo, hi), c = fmax(lo, hi);
+      const REAL enter = fmax(fmax(a.x, a.y), fmax(a.z, RC(0))), leave = fmin(fmin(c.x, c.y), fmin(c.z, length_max));
+      if (enter <= leave) {
+        if (nd->count > 0) {
+          for (int q = nd->first; q < nd->first + nd->count; ++q) {
+            const REAL3 v = (REAL3)(OCEAN_MAP(ARCUS_PHOTON_POSITION, q), OCEAN_MAP(ARCUS_PHOTON_POSITION + 1, q),
+                                    OCEAN_MAP(ARCUS_PHOTON_POSITION + 2, q)) -
+                            eye;
+            const REAL tc = dot(v, dir), r = radii[q];
+            if (tc < RC(0) || tc > length_max) continue;
+            const REAL off2 = dot(v, v) - tc * tc;
+            if (off2 >= r * r) continue;
+            const REAL mu = -(OCEAN_MAP(ARCUS_PHOTON_DIRECTION, q) * dir.x +
+                              OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 1, q) * dir.y +
+                              OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 2, q) * dir.z);
+            const int b = (int)OCEAN_MAP(ARCUS_PHOTON_POWER + 1, q);
+            const REAL p = ocean_photon_phase(phases, optics, (int)OCEAN_MAP(ARCUS_PHOTON_POWER + 2, q), mu);
+            out[b] += exp(-sigma_t[b] * tc) * p * OCEAN_MAP(ARCUS_PHOTON_POWER, q) * per_nm / (OCEAN_PI * r * r);
+          }
+        } else {
+          stack[top++] = nd->first + 1;
+          node = nd->first;
+          continue;
+        }
+      }
+      if (top == 0) break;
+      node = stack[--top];
+    }
+#endif
+}
+
+/* Each photon's radius for the beam estimate: the distance to its k-th nearest photon
+ * (itself included, as Jarosz et al. gather it). */
+__kernel void arcus_ocean_photon_radii(__global const bvh_node* nodes, __global const REAL* photons,
+                                       const photon_map_desc map, const int k, __global REAL* radii) {
+  const int q = (int)get_global_id(0);
+  if (q >= map.count) return;
+  REAL d2[ARCUS_PHOTON_MAX_K];
+  int slot[ARCUS_PHOTON_MAX_K];
+  const int found = photon_knn(nodes, photons, map, OCEAN_MAP(ARCUS_PHOTON_POSITION, q),
+                               OCEAN_MAP(ARCUS_PHOTON_POSITION + 1, q), OCEAN_MAP(ARCUS_PHOTON_POSITION + 2, q), RC(0),
+                               RC(0), RC(0), k, (REAL)INFINITY, d2, slot);
+  radii[q] = found > 0 ? sqrt(d2[0]) : RC(0);
+}

@@ -1,0 +1,392 @@
+#include "ocean/render.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "bvh/bvh.h"
+#include "core/buffer.h"
+#include "core/context.h"
+#include "core/error.h"
+#include "core/features.h"
+#include "core/slices.h"
+#include "photon/photon_map.h"
+#include "spectral/cie.h"
+#include "spectral/srgb.h"
+
+namespace arcus::ocean {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Rows of the light tables over distance: linear interpolation between rows 1/1023 of
+// the longest distance apart errs by (h σ_t)²/8 relatively, < 1e-4 for σ_t < 2.4/m
+// (water at 780 nm) over 30 m.
+constexpr int kLightRows = 1024;
+// Pixels per launch at most: the transmittance scratch holds a spectrum per pixel.
+constexpr int64_t kMaxSlicePixels = 16384;
+// The trace's share of the progress bar.
+constexpr double kTraceShare = 0.3;
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::string number(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", x);
+  return b;
+}
+
+// A light's radiant intensity at nm [W/sr/nm]: point lights spread their flux over
+// 4π, spots over their cone's solid angle.
+double intensity(const Light& L, double nm) {
+  const Spectrum& s = L.spectrum;
+  double phi;
+  if (s.nm.size() == 1) {
+    phi = s.values[0];
+  } else if (nm < s.nm.front() || nm > s.nm.back()) {
+    phi = 0;
+  } else {
+    const size_t j = std::min<size_t>(std::upper_bound(s.nm.begin(), s.nm.end(), nm) - s.nm.begin(), s.nm.size() - 1);
+    phi = s.values[j - 1] + (nm - s.nm[j - 1]) / (s.nm[j] - s.nm[j - 1]) * (s.values[j] - s.values[j - 1]);
+  }
+  const double solid_angle =
+      L.kind == Light::spot ? 2 * kPi * (1 - std::cos(L.half_angle_deg * kPi / 180)) : 4 * kPi;
+  return phi / solid_angle;
+}
+
+// Progress of one stage mapped onto [offset, offset + share] of the caller's bar.
+struct StageProgress {
+  arcus_progress_callback outer;
+  void* user;
+  double offset, share;
+  static int32_t call(void* self, double fraction) {
+    auto* s = static_cast<StageProgress*>(self);
+    return s->outer ? s->outer(s->user, s->offset + s->share * fraction) : 0;
+  }
+};
+
+const KernelSource& render_source() {
+  static const KernelSource source{"ocean/render",
+                                   [] {
+                                     std::vector<const char*> files = photon::device_headers();
+                                     files.push_back("ocean/ocean_desc.h");
+                                     files.push_back("ocean/render.cl");
+                                     return files;
+                                   }(),
+                                   ""};
+  return source;
+}
+
+bool inelastic(const WaterTables& w) {
+  for (int e : {kRaman, kFluorescePhyto, kFluoresceCdom})
+    for (double c : w.event[e])
+      if (c > 0) return true;
+  return false;
+}
+
+// The kernel's light tables (kernels/ocean/ocean_desc.h): per light, kLightRows rows
+// of the intensity reaching distance d per sample, then as many of the inelastic
+// in-scattering G of eq. 4.5 (its redistribution folded in once, here).
+std::vector<double> light_tables(const WaterTables& w, const std::vector<Light>& lights, const std::vector<double>& st,
+                                 double band, double g_step) {
+  const size_t n = w.grid.count;
+  // M[m][i]: radiance per metre and per unit intensity at λ_m from excitation λ_i
+  // (photons re-emitted at rate μ_j(λ_i), density h_j(λ_m | λ_i) per nm, energy
+  // λ_i/λ_m each, isotropically: 1/4π).
+  std::vector<double> M(n * n, 0.0);
+  const int events[kProcessCount] = {kRaman, kFluorescePhyto, kFluoresceCdom};
+  for (int p = 0; p < kProcessCount; ++p) {
+    const auto& h = w.emission[p];
+    if (h.size() != n * n) continue;
+    for (size_t i = 0; i < n; ++i) {
+      const double mu = w.event[events[p]][i];
+      if (mu <= 0) continue;
+      for (size_t m = 0; m < n; ++m)
+        M[m * n + i] += mu * h[i * n + m] * (w.grid.nm(int(i)) / w.grid.nm(int(m))) * band / (4 * kPi);
+    }
+  }
+  const bool any_inelastic = inelastic(w);
+  std::vector<double> out(lights.size() * 2 * kLightRows * n, 0.0);
+  std::vector<double> reach(n);
+  for (size_t l = 0; l < lights.size(); ++l)
+    for (int g = 0; g < kLightRows; ++g) {
+      const double d = g * g_step;
+      for (size_t m = 0; m < n; ++m) reach[m] = intensity(lights[l], w.grid.nm(int(m))) * std::exp(-st[m] * d);
+      double* E = &out[((l * 2 * kLightRows) + g) * n];
+      std::copy(reach.begin(), reach.end(), E);
+      if (!any_inelastic) continue;
+      double* G = E + kLightRows * n;
+      for (size_t m = 0; m < n; ++m) {
+        double sum = 0;
+        for (size_t i = 0; i < n; ++i) sum += M[m * n + i] * reach[i];
+        G[m] = sum;
+      }
+    }
+  return out;
+}
+
+// The stored photons as the map's photons: power, grid sample, event.
+photon::Photons map_photons(const StoredPhotons& s, const Grid& grid) {
+  photon::Photons p;
+  p.channels = ARCUS_OCEAN_MAP_CHANNELS;
+  p.positions = s.positions;
+  p.directions = s.directions;
+  p.powers.reserve(s.size() * 3);
+  for (size_t i = 0; i < s.size(); ++i) {
+    const double k = grid.count == 1 ? 0 : std::round((s.wavelengths[i] - grid.first_nm) / grid.step_nm);
+    p.powers.insert(p.powers.end(), {s.powers[i], std::clamp(k, 0.0, double(grid.count - 1)), double(s.events[i])});
+  }
+  return p;
+}
+
+}  // namespace
+
+void check_camera(const arcus_camera& c) {
+  auto finite3 = [](const double* v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); };
+  require(finite3(c.position) && finite3(c.look_at) && finite3(c.up), "camera: position, look_at and up must be finite");
+  const double f[3] = {c.look_at[0] - c.position[0], c.look_at[1] - c.position[1], c.look_at[2] - c.position[2]};
+  require(std::hypot(f[0], f[1], f[2]) > 0, "camera.look_at: must differ from the position");
+  const double x[3] = {f[1] * c.up[2] - f[2] * c.up[1], f[2] * c.up[0] - f[0] * c.up[2], f[0] * c.up[1] - f[1] * c.up[0]};
+  require(std::hypot(x[0], x[1], x[2]) > 0, "camera.up: must not be zero or parallel to the view direction");
+  require(std::isfinite(c.vfov_deg) && c.vfov_deg > 0 && c.vfov_deg < 180,
+          "camera.vfov_deg: must be in (0, 180), got " + number(c.vfov_deg));
+  require(c.width >= 1 && c.height >= 1 && c.width <= 16384 && c.height <= 16384 &&
+              uint64_t(c.width) * c.height <= (uint64_t(1) << 28),
+          "camera: width and height must be in 1..16384 (and at most 2^28 pixels)");
+}
+
+void check_march(const MarchParams& m) {
+  require(m.steps >= 1 && m.steps <= 1000000, "march.steps: must be in 1..1000000, got " + std::to_string(m.steps));
+  require(std::isfinite(m.distance) && m.distance > 0, "march.distance: must be finite and > 0, got " + number(m.distance));
+  require(m.k >= 1 && m.k <= ARCUS_PHOTON_MAX_K,
+          "march.k: must be in 1.." + std::to_string(ARCUS_PHOTON_MAX_K) + ", got " + std::to_string(m.k));
+  require(m.estimator == MarchParams::per_step || m.estimator == MarchParams::beam,
+          "march.estimator: unknown estimator " + std::to_string(int(m.estimator)));
+  require(std::isfinite(m.exposure) && m.exposure > 0, "march.exposure: must be finite and > 0, got " + number(m.exposure));
+}
+
+arcus_features render_features(const WaterTables& water, const MarchParams& march) {
+  arcus_features f = 0;
+  if (march.single_scattering && inelastic(water)) f |= ARCUS_FEATURE_OCEAN_INELASTIC;
+  if (march.multiple_scattering) f |= ARCUS_FEATURE_OCEAN_PHOTON_MAP;
+  if (march.multiple_scattering && march.estimator == MarchParams::beam) f |= ARCUS_FEATURE_OCEAN_BEAM;
+  return f;
+}
+
+std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const WaterTables& w, const std::vector<Light>& lights,
+                                  const Medium& medium, const TraceParams& trace_params, const arcus_camera& camera,
+                                  const MarchParams& march, arcus_progress_callback progress, void* user,
+                                  bool* cancelled) {
+  const auto t0 = std::chrono::steady_clock::now();
+  check_camera(camera);
+  check_march(march);
+  check_trace(lights, medium, trace_params);
+  for (size_t l = 0; l < lights.size(); ++l)
+    require(lights[l].kind == Light::point || lights[l].kind == Light::spot,
+            "lights[" + std::to_string(l) + "]: images are lit by point and spot lights (in the water)");
+  const Grid& grid = w.grid;
+  const size_t n = grid.count;
+  auto job = std::make_unique<RenderJob>(ctx);
+  job->width = camera.width;
+  job->height = camera.height;
+  job->exposure = march.exposure;
+  for (int k = 0; k < grid.count; ++k) job->wavelengths.push_back(grid.nm(k));
+  *cancelled = false;
+
+  // ---- photons (multiple scattering only)
+  photon::PhotonMap* map = nullptr;
+  std::unique_ptr<photon::PhotonMap> map_owner;
+  arcus_features trace_bits = 0;
+  if (march.multiple_scattering) {
+    TraceParams tp = trace_params;
+    tp.store = true;
+    tp.depths.clear();
+    StageProgress stage{progress, user, 0, kTraceShare};
+    trace_into(job.get(), ctx, w, lights, medium, tp, progress ? &StageProgress::call : nullptr, &stage, cancelled);
+    trace_bits = job->features;
+    job->render_stats.trace_seconds = job->trace_seconds;
+    job->render_stats.photons_stored = job->photons.size();
+    if (*cancelled) return job;
+    const auto tm = std::chrono::steady_clock::now();
+    map_owner = std::make_unique<photon::PhotonMap>(ctx, map_photons(job->photons, grid));
+    map = map_owner.get();
+    job->render_stats.map_seconds = seconds_since(tm);
+  }
+  job->features = trace_bits | render_features(w, march);
+
+  // ---- optics and light tables
+  const double band = grid.count == 1 ? 1.0 : grid.step_nm;
+  const double dt = march.distance / march.steps;
+  std::vector<double> st(n, 0.0);
+  for (int e = 0; e < kEventCount; ++e)
+    for (size_t m = 0; m < n; ++m) st[m] += w.event[e][m];
+  std::vector<double> optics(6 * n);
+  for (size_t m = 0; m < n; ++m) {
+    optics[m] = st[m];
+    optics[n + m] = std::exp(-st[m] * dt);
+    optics[2 * n + m] = std::exp(-st[m] * dt / 2);
+    for (int s = 0; s < kScattererCount; ++s) optics[(3 + s) * n + m] = w.event[kScatterWater + s][m];
+  }
+  arcus_ocean_render_desc d{};
+  append_phases(w, &optics, &d.phases);
+  double d_max = 0;
+  for (const Light& L : lights)
+    d_max = std::max(d_max, std::hypot(L.position[0] - camera.position[0], L.position[1] - camera.position[1],
+                                       L.position[2] - camera.position[2]) +
+                                march.distance);
+  const double g_step = d_max / (kLightRows - 1);
+  const std::vector<double> tables = light_tables(w, lights, st, band, g_step);
+  std::vector<double> light_buf;
+  for (const Light& L : lights) {
+    double axis[3] = {L.direction[0], L.direction[1], L.direction[2]};
+    const double norm = std::hypot(axis[0], axis[1], axis[2]);
+    for (double& a : axis) a = norm > 0 ? a / norm : 0;
+    const double rec[ARCUS_OCEAN_LIGHT_REALS] = {double(L.kind), L.position[0], L.position[1], L.position[2], axis[0],
+                                                 axis[1], axis[2], std::cos(L.half_angle_deg * kPi / 180), 0, 0};
+    light_buf.insert(light_buf.end(), rec, rec + ARCUS_OCEAN_LIGHT_REALS);
+  }
+
+  // ---- the camera
+  double f[3], r[3], u[3];
+  for (int a = 0; a < 3; ++a) f[a] = camera.look_at[a] - camera.position[a];
+  const double fl = std::hypot(f[0], f[1], f[2]);
+  for (double& x : f) x /= fl;
+  r[0] = f[1] * camera.up[2] - f[2] * camera.up[1];
+  r[1] = f[2] * camera.up[0] - f[0] * camera.up[2];
+  r[2] = f[0] * camera.up[1] - f[1] * camera.up[0];
+  const double rl = std::hypot(r[0], r[1], r[2]);
+  for (double& x : r) x /= rl;
+  u[0] = r[1] * f[2] - r[2] * f[1];
+  u[1] = r[2] * f[0] - r[0] * f[2];
+  u[2] = r[0] * f[1] - r[1] * f[0];
+  const double half_h = std::tan(camera.vfov_deg * kPi / 360), half_w = half_h * camera.width / camera.height;
+  for (int a = 0; a < 3; ++a) {
+    d.eye[a] = camera.position[a];
+    d.forward[a] = f[a];
+    d.right[a] = r[a] * half_w;
+    d.up[a] = u[a] * half_h;
+  }
+  d.step = dt;
+  d.band = band;
+  d.g_step = g_step;
+  d.width = static_cast<int32_t>(camera.width);
+  d.height = static_cast<int32_t>(camera.height);
+  d.count = static_cast<int32_t>(n);
+  d.steps = march.steps;
+  d.k = march.k;
+  d.light_count = static_cast<int32_t>(lights.size());
+  d.g_samples = kLightRows;
+  d.single = march.single_scattering;
+
+  const auto te = std::chrono::steady_clock::now();
+  const Layout layout{1, 1};  // scalar: a pixel per work-item (render.cl)
+  const BuiltProgram built = ctx->runtime->program(render_source(), render_features(w, march), layout);
+  job->stats.build_seconds += built.seconds;
+  const size_t pixels = size_t(camera.width) * camera.height;
+  DeviceBuffer optics_dev(ctx, optics.size() * sizeof(double), "the water's optics", optics.data());
+  DeviceBuffer lights_dev(ctx, light_buf.size() * sizeof(double), "the lights", light_buf.data());
+  DeviceBuffer tables_dev(ctx, tables.size() * sizeof(double), "the light tables", tables.data());
+  DeviceBuffer radiance_dev(ctx, pixels * n * sizeof(double), "the spectral image");
+  DeviceBuffer scratch_dev(ctx, std::min<size_t>(pixels, kMaxSlicePixels) * n * sizeof(double), "the transmittances");
+
+  // The map's view for the kernel: the k-nearest map itself, or (beam) the photons
+  // re-ordered under a BVH of their spheres, with their radii.
+  std::unique_ptr<DeviceBuffer> beam_nodes, beam_photons, radii_dev;
+  arcus_photon_map_desc map_desc{0, ARCUS_OCEAN_MAP_CHANNELS};
+  const DeviceBuffer *nodes_arg = nullptr, *photons_arg = nullptr;
+  if (map) {
+    map_desc = map->desc();
+    nodes_arg = map->nodes();
+    photons_arg = map->photons();
+  }
+  if (map && march.estimator == MarchParams::beam && map->size() > 0) {
+    const auto tb = std::chrono::steady_clock::now();
+    const size_t count = map->size();
+    DeviceBuffer radii(ctx, count * sizeof(double), "the photons' radii");
+    KernelCall rk(built.program, "arcus_ocean_photon_radii");
+    photon::set_map_arguments(rk, 0, *map);
+    rk.set_value(3, int32_t(march.k));
+    rk.set(4, &radii);
+    job->render_stats.estimate_seconds += rk.run(ctx, count);
+    std::vector<double> r_slot(count);
+    radii.read(ctx, 0, count * sizeof(double), r_slot.data());
+    // The map's photons (slot order, structure of arrays) read back once.
+    const size_t comps = ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_CHANNELS;
+    std::vector<double> soa(comps * count);
+    map->photons()->read(ctx, 0, soa.size() * sizeof(double), soa.data());
+    std::vector<bvh::Bounds> spheres(count);
+    for (size_t q = 0; q < count; ++q)
+      for (int a = 0; a < 3; ++a) {
+        spheres[q].lo[a] = soa[a * count + q] - r_slot[q];
+        spheres[q].hi[a] = soa[a * count + q] + r_slot[q];
+      }
+    const bvh::Flat tree = bvh::build(spheres);
+    std::vector<double> ordered(comps * count), r_ordered(count);
+    for (size_t s = 0; s < count; ++s) {
+      const size_t q = tree.order[s];
+      for (size_t c = 0; c < comps; ++c) ordered[c * count + s] = soa[c * count + q];
+      r_ordered[s] = r_slot[q];
+    }
+    beam_nodes = std::make_unique<DeviceBuffer>(ctx, tree.nodes.size() * sizeof(arcus_bvh_node_d), "the photon spheres' BVH",
+                                                tree.nodes.data());
+    beam_photons = std::make_unique<DeviceBuffer>(ctx, ordered.size() * sizeof(double), "the beam's photons", ordered.data());
+    radii_dev = std::make_unique<DeviceBuffer>(ctx, count * sizeof(double), "the beam's radii", r_ordered.data());
+    nodes_arg = beam_nodes.get();
+    photons_arg = beam_photons.get();
+    job->render_stats.map_seconds += seconds_since(tb);
+  }
+
+  KernelCall kernel(built.program, "arcus_ocean_render");
+  kernel.set(0, &optics_dev);
+  kernel.set(1, &lights_dev);
+  kernel.set(2, &tables_dev);
+  kernel.set(3, nodes_arg);
+  kernel.set(4, photons_arg);
+  kernel.set_value(5, map_desc);
+  kernel.set(6, radii_dev.get());
+  kernel.set(8, &radiance_dev);
+  kernel.set(9, &scratch_dev);
+  int64_t done = 0;
+  SliceJob slices;
+  slices.first_units = 64;
+  slices.launch = [&](int64_t units, bool) {
+    const int64_t count = std::clamp<int64_t>(units, 1, kMaxSlicePixels);
+    d.first_pixel = static_cast<int32_t>(done);
+    d.end_pixel = static_cast<int32_t>(std::min<int64_t>(done + count, int64_t(pixels)));
+    kernel.set_value(7, d);
+    const double s = kernel.run(ctx, size_t(d.end_pixel - d.first_pixel));
+    done = d.end_pixel;
+    return s;
+  };
+  slices.finished = [&] { return done >= int64_t(pixels); };
+  slices.fraction = [&] { return double(done) / double(pixels); };
+  StageProgress stage{progress, user, march.multiple_scattering ? kTraceShare : 0.0,
+                      march.multiple_scattering ? 1 - kTraceShare : 1.0};
+  slices.progress = progress ? &StageProgress::call : nullptr;
+  slices.progress_user = &stage;
+  arcus_job_stats render_run{};
+  *cancelled = run_in_slices(slices, &render_run);
+  job->stats.kernel_seconds += render_run.kernel_seconds;
+  job->stats.launches += render_run.launches;
+  job->render_stats.estimate_seconds += seconds_since(te);
+
+  // ---- spectra to colour
+  job->spectral.resize(pixels * n);
+  radiance_dev.read(ctx, 0, job->spectral.size() * sizeof(double), job->spectral.data());
+  const auto weights = spectral::band_weights(job->wavelengths);
+  job->rgb.resize(pixels * 3);
+  for (size_t p = 0; p < pixels; ++p) {
+    std::array<double, 3> xyz{0, 0, 0};
+    for (size_t m = 0; m < n; ++m)
+      for (int c = 0; c < 3; ++c) xyz[c] += job->spectral[p * n + m] * weights[m][c];
+    const auto rgb = spectral::xyz_to_linear_srgb(xyz);
+    for (int c = 0; c < 3; ++c) job->rgb[3 * p + c] = static_cast<float>(rgb[c]);
+  }
+  job->render_stats.total_seconds = seconds_since(t0);
+  job->stats.total_seconds = job->render_stats.total_seconds;
+  return job;
+}
+
+}  // namespace arcus::ocean

@@ -1,0 +1,53 @@
+// Ocean scenes: a scene file whose top level has "water" (scenes/README.md, "Ocean
+// scenes"), read by the library like every engine's (arcus_scene_load), made into what a
+// trace and a render need: the water, the lights and the medium, the photon trace's
+// parameters, and optionally a camera with the ray-marching settings.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "arcus/arcus_render.h"  // arcus_camera: the one pinhole camera of arcus
+#include "ocean/trace.h"
+#include "ocean/water.h"
+#include "scene/scene.h"
+
+namespace arcus::ocean {
+
+// How camera rays gather light (thesis §4.2, §4.1.4).
+struct MarchParams {
+  int steps = 200;            // ray-marching steps (thesis §5.3)
+  double distance = 20;       // [m] how far a camera ray is marched
+  int k = 250;                // photons per radiance estimate (thesis §5.3)
+  enum Estimator : int { per_step = 0, beam = 1 } estimator = per_step;  // beam: Jarosz et al. 2008
+  bool single_scattering = true;    // from the lights, elastic and inelastic (eq. 4.5)
+  bool multiple_scattering = true;  // from the photon map, elastic and inelastic (eq. 4.6)
+  double exposure = 1;              // PNG: linear sRGB × exposure before encoding
+};
+
+struct OceanSceneDesc {
+  std::string name, description;
+  Water water;
+  Grid grid;
+  std::vector<Light> lights;
+  Medium medium;
+  TraceParams trace;   // photons, max_interactions, seed, depths, layer
+  bool has_camera = false;
+  arcus_camera camera{};
+  MarchParams march;
+};
+
+struct OceanScene : arcus_scene_s {
+  explicit OceanScene(arcus_context_t* ctx) : arcus_scene_s(ctx, "ocean") {}
+  OceanSceneDesc desc;
+};
+
+// Reads and checks an ocean scene file (INVALID_ARGUMENT naming the file and the JSON
+// path, "scene.json: $.water.chlorophyll: must be finite and >= 0"; IO for a file that
+// cannot be read).
+OceanSceneDesc read_ocean_scene(const std::string& path);
+
+// The scene behind a handle, checked to be an ocean scene.
+OceanScene* ocean_scene(arcus_scene_s* scene);
+
+}  // namespace arcus::ocean
