@@ -203,15 +203,25 @@ __kernel void arcus_ocean_render(__global const REAL* optics, __global const REA
 }
 
 /* Each photon's radius for the beam estimate: the distance to its k-th nearest photon
- * (itself included, as Jarosz et al. gather it). */
+ * (itself included, as Jarosz et al. gather it).  A work-item takes `chunk`
+ * consecutive slots, neighbours in the map's BVH order: the last one's radius plus the
+ * distance moved bounds this one's (triangle inequality), which prunes the search and
+ * loses none of the k nearest. */
 __kernel void arcus_ocean_photon_radii(__global const bvh_node* nodes, __global const REAL* photons,
-                                       const photon_map_desc map, const int k, __global REAL* radii) {
-  const int q = (int)get_global_id(0);
-  if (q >= map.count) return;
+                                       const photon_map_desc map, const int k, const int chunk,
+                                       __global REAL* radii) {
+  const int first = (int)get_global_id(0) * chunk;
   REAL d2[ARCUS_PHOTON_MAX_K];
   int slot[ARCUS_PHOTON_MAX_K];
-  const int found = photon_knn(nodes, photons, map, OCEAN_MAP(ARCUS_PHOTON_POSITION, q),
-                               OCEAN_MAP(ARCUS_PHOTON_POSITION + 1, q), OCEAN_MAP(ARCUS_PHOTON_POSITION + 2, q), RC(0),
-                               RC(0), RC(0), k, (REAL)INFINITY, d2, slot);
-  radii[q] = found > 0 ? sqrt(d2[0]) : RC(0);
+  REAL bound = (REAL)INFINITY;
+  REAL3 last = (REAL3)(RC(0), RC(0), RC(0));
+  for (int q = first; q < min(first + chunk, map.count); ++q) {
+    const REAL3 x = (REAL3)(OCEAN_MAP(ARCUS_PHOTON_POSITION, q), OCEAN_MAP(ARCUS_PHOTON_POSITION + 1, q),
+                            OCEAN_MAP(ARCUS_PHOTON_POSITION + 2, q));
+    const REAL limit = bound + length(x - last) * RC(1.000001);
+    const int found = photon_knn(nodes, photons, map, x.x, x.y, x.z, RC(0), RC(0), RC(0), k, limit * limit, d2, slot);
+    radii[q] = found > 0 ? sqrt(d2[0]) : RC(0);
+    bound = found == k ? radii[q] : (REAL)INFINITY;
+    last = x;
+  }
 }

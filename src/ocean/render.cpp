@@ -25,6 +25,8 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr int kLightRows = 1024;
 // Pixels per launch at most: the transmittance scratch holds a spectrum per pixel.
 constexpr int64_t kMaxSlicePixels = 16384;
+// Photons whose radii one work-item finds, each search bounded by the last one's.
+constexpr size_t kRadiiChunk = 16;
 // The trace's share of the progress bar.
 constexpr double kTraceShare = 0.3;
 
@@ -280,7 +282,6 @@ std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const WaterTables& w, co
   d.g_samples = kLightRows;
   d.single = march.single_scattering;
 
-  const auto te = std::chrono::steady_clock::now();
   const Layout layout{1, 1};  // scalar: a pixel per work-item (render.cl)
   const BuiltProgram built = ctx->runtime->program(render_source(), render_features(w, march), layout);
   job->stats.build_seconds += built.seconds;
@@ -308,8 +309,9 @@ std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const WaterTables& w, co
     KernelCall rk(built.program, "arcus_ocean_photon_radii");
     photon::set_map_arguments(rk, 0, *map);
     rk.set_value(3, int32_t(march.k));
-    rk.set(4, &radii);
-    job->render_stats.estimate_seconds += rk.run(ctx, count);
+    rk.set_value(4, int32_t(kRadiiChunk));
+    rk.set(5, &radii);
+    rk.run(ctx, (count + kRadiiChunk - 1) / kRadiiChunk);
     std::vector<double> r_slot(count);
     radii.read(ctx, 0, count * sizeof(double), r_slot.data());
     // The map's photons (slot order, structure of arrays) read back once.
@@ -338,6 +340,7 @@ std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const WaterTables& w, co
     job->render_stats.map_seconds += seconds_since(tb);
   }
 
+  const auto te = std::chrono::steady_clock::now();
   KernelCall kernel(built.program, "arcus_ocean_render");
   kernel.set(0, &optics_dev);
   kernel.set(1, &lights_dev);
