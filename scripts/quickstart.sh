@@ -3,8 +3,9 @@
 # CPU when nothing else is there): renders every bundled render scene (the thesis' four
 # test scenes and the spectral sunset) to EXR and PNG, runs the Table 5.2 benchmark
 # (what each optimization costs and saves, against the ground truth), traces the curved
-# mirage scene and runs the integrators' accuracy-vs-time benchmark, then says where the
-# images and tables are.
+# mirage scene and runs the integrators' accuracy-vs-time benchmark, renders the five
+# waters of the ocean engine with their profiles, energy plots and benchmark, then says
+# where the images and tables are.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/bootstrap.sh
@@ -20,7 +21,23 @@ build/arcus_trace scenes/mirage.json --out out/mirage
 python3 apps/plot_paths.py out/mirage
 build/bench/arcus_bench --out out/bench
 
+# Underwater light: the five waters of Fig. 5.10, the energy by interaction and by
+# constituent (Fig. 5.9, 5.12), sunlit irradiance profiles per water, a profile against
+# the independent plane-parallel solution, and the ocean benchmark.
+mkdir -p out/ocean
+for water in atlantic mediterranean baltic north_sea cdom_coastal; do
+  python3 apps/ocean/arcus_ocean.py render "scenes/ocean/$water.json" -o "out/ocean/$water.exr" --png "out/ocean/$water.png"
+  python3 apps/ocean/arcus_ocean.py profile "scenes/ocean/profiles/${water}_sun.json" --out "out/ocean/profiles/$water"
+done
+python3 apps/ocean/arcus_ocean.py trace scenes/ocean/fig5_9.json --out out/ocean/fig5_9
+python3 apps/ocean/arcus_ocean.py trace scenes/ocean/fig5_11/baltic_inelastic.json --out out/ocean/fig5_12
+python3 apps/ocean/plot_profile_check.py --out out/ocean
+python3 bench/ocean_bench.py --out out/bench
+
 echo
 echo "Rendered scenes:  $(pwd)/out/render/  (<scene>.png, <scene>.exr with distance/steps/tests channels, render.md: Table 5.2)"
 echo "Mirage rays:      $(pwd)/out/mirage/  (paths.png, rays.csv, paths.csv, summary.md)"
 echo "Integrators:      $(pwd)/out/bench/   (tables .md and .csv, plots .png)"
+echo "Underwater light: $(pwd)/out/ocean/   (<water>.png/.exr, fig5_9/ and fig5_12/ plots and tallies.json,"
+echo "                  profiles/<water>/profile.png and .csv, profile_check.png/.md: against discrete ordinates)"
+echo "Ocean benchmark:  $(pwd)/out/bench/ocean.md  (error against time, per stage, both estimators)"
