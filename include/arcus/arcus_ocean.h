@@ -88,6 +88,9 @@ typedef struct arcus_bio_optical {
   double raman_scale;        /* × the Raman coefficient (0: no Raman)              */
   double detritus_scattering_reference_a_d400;
   arcus_phase_function detritus_phase;
+  int32_t stokes_only;       /* 1: inelastic re-emission only toward longer
+                              * wavelengths, no anti-Stokes (the thesis' Fig. 5.11
+                              * ablation); 0: both ways (default)                  */
 } arcus_bio_optical;
 
 /* The thesis' values. */
@@ -102,6 +105,7 @@ typedef struct arcus_water_iops {
   int32_t raman;                         /* 1: Raman by the water (taken out of absorption) */
   double chlorophyll, chlorophyll_yield; /* adds phytoplankton absorption and fluorescence  */
   double a_y440, s_y;                    /* adds CDOM absorption and fluorescence           */
+  int32_t stokes_only;                   /* as in arcus_bio_optical                         */
 } arcus_water_iops;
 
 ARCUS_API arcus_status arcus_water_create(arcus_context_t* ctx, const arcus_bio_optical* bio, arcus_water_t** out);

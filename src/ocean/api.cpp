@@ -71,6 +71,7 @@ arcus_bio_optical bio_struct(const ocean::BioOptical& b) {
   s.chlorophyll_yield = b.chlorophyll_yield;
   s.cdom_yield_scale = b.cdom_yield_scale;
   s.raman_scale = b.raman_scale;
+  s.stokes_only = !b.anti_stokes;
   s.detritus_scattering_reference_a_d400 = b.detritus_scattering_reference_a_d400;
   s.detritus_phase = phase_struct(b.detritus_phase);
   return s;
@@ -86,6 +87,7 @@ ocean::BioOptical bio_of(const arcus_bio_optical& s) {
   b.chlorophyll_yield = s.chlorophyll_yield;
   b.cdom_yield_scale = s.cdom_yield_scale;
   b.raman_scale = s.raman_scale;
+  b.anti_stokes = s.stokes_only == 0;
   b.detritus_scattering_reference_a_d400 = s.detritus_scattering_reference_a_d400;
   b.detritus_phase = phase_of(s.detritus_phase, "bio.detritus_phase");
   return b;
@@ -250,6 +252,7 @@ arcus_status arcus_water_create_iops(arcus_context_t* ctx, const arcus_water_iop
     o.chlorophyll_yield = iops->chlorophyll_yield;
     o.a_y440 = iops->a_y440;
     o.s_y = iops->s_y;
+    o.anti_stokes = iops->stokes_only == 0;
     return w;
   });
 }

@@ -88,12 +88,14 @@ Phase parse_phase(const Node& n) {
 }
 
 Iops parse_iops(const Node& n) {
-  n.expect_object({"absorption", "scattering", "phase", "raman", "chlorophyll", "chlorophyll_yield", "a_y440", "s_y"});
+  n.expect_object({"absorption", "scattering", "phase", "raman", "chlorophyll", "chlorophyll_yield", "a_y440", "s_y",
+                   "anti_stokes"});
   Iops i;
   i.absorption = parse_spectrum(n.member("absorption"));
   i.scattering = parse_spectrum(n.member("scattering"));
   i.phase = parse_phase(n.member("phase"));
   if (auto v = n.find("raman")) i.raman = v->boolean();
+  if (auto v = n.find("anti_stokes")) i.anti_stokes = v->boolean();
   if (auto v = n.find("chlorophyll")) i.chlorophyll = v->number();
   if (auto v = n.find("chlorophyll_yield")) i.chlorophyll_yield = v->number();
   if (auto v = n.find("a_y440")) i.a_y440 = v->number();
@@ -112,7 +114,7 @@ Water parse_water(const Node& n) {
     return w;
   }
   n.expect_object({"preset", "chlorophyll", "a_d400", "a_y440", "s_d", "s_y", "chlorophyll_yield",
-                   "cdom_yield_scale", "raman_scale"});
+                   "cdom_yield_scale", "raman_scale", "anti_stokes"});
   w.kind = Water::kBioOptical;
   if (auto v = n.find("preset")) {
     try {
@@ -132,6 +134,7 @@ Water parse_water(const Node& n) {
       {"raman_scale", &BioOptical::raman_scale}};
   for (const auto& p : params)
     if (auto v = n.find(p.first)) w.bio.*p.second = v->number();
+  if (auto v = n.find("anti_stokes")) w.bio.anti_stokes = v->boolean();
   return w;
 }
 

@@ -384,6 +384,7 @@ WaterTables evaluate(const Water& water, const Grid& grid) {
   const BioOptical& b = water.bio;
   const Iops& iops = water.iops;
   const size_t n = size_t(grid.count);
+  const bool anti_stokes = water.kind == Water::kBioOptical ? water.bio.anti_stokes : water.iops.anti_stokes;
   const double lo = grid.first_nm, hi = grid.count > 1 ? grid.last_nm() : grid.first_nm;
 
   WaterTables t;
@@ -435,7 +436,8 @@ WaterTables evaluate(const Water& water, const Grid& grid) {
     t.yield[kCdomProcess][k] = cdom_scale * photon_yield(kCdomProcess, nm);
     require(t.yield[kCdomProcess][k] <= 1, "water.bio.cdom_yield_scale: makes the CDOM photon yield " +
                                                text(t.yield[kCdomProcess][k]) + " exceed 1 at " + text(nm) + " nm");
-    for (int p = 0; p < kProcessCount; ++p) t.inside[p][k] = inside_probability(p, nm, lo, hi);
+    // Without anti-Stokes re-emission only λo ≥ λi lands in the range (thesis Fig. 5.11).
+    for (int p = 0; p < kProcessCount; ++p) t.inside[p][k] = inside_probability(p, nm, anti_stokes ? lo : nm, hi);
   }
 
   // Emission on the grid, restricted to it and renormalised by the trapezoid rule (what
@@ -445,7 +447,9 @@ WaterTables evaluate(const Water& water, const Grid& grid) {
     for (size_t k = 0; k < n; ++k) {
       const size_t row = k * n;
       if (t.inside[p][k] > 0) {
-        for (size_t m = 0; m < n; ++m) t.emission[p][row + m] = emission_density(p, grid.nm(int(k)), grid.nm(int(m)));
+        for (size_t m = 0; m < n; ++m)
+          t.emission[p][row + m] =
+              anti_stokes || m > k ? emission_density(p, grid.nm(int(k)), grid.nm(int(m))) : 0.0;
         const double total = trapezoid(t.emission[p], grid.step_nm, row, n);
         if (total > 0 && std::isfinite(total)) {
           double sum = 0;

@@ -88,6 +88,9 @@ struct BioOptical {
   double chlorophyll_yield = 0.1;  // Γ_p (eq. 3.31; Table 4.3)
   double cdom_yield_scale = 1;     // multiplies Hawes' A0 (0: no CDOM fluorescence)
   double raman_scale = 1;          // multiplies the Raman coefficient b_r (0: no Raman)
+  // false: inelastic re-emission only toward longer wavelengths (λo ≥ λi, to the grid's
+  // resolution); the shorter ones count as absorbed (thesis Fig. 5.11, right).
+  bool anti_stokes = true;
   // Minerals and detritus scattering, Table 3.5 scaled by a_d400 / this (data/ocean/README.md).
   double detritus_scattering_reference_a_d400 = 0.1;
   Phase detritus_phase = petzold_like_detritus_phase();  // data/ocean/README.md
@@ -115,6 +118,7 @@ struct Iops {
   double chlorophyll = 0;             // adds phytoplankton absorption and fluorescence (no scattering)
   double chlorophyll_yield = 0.1;
   double a_y440 = 0, s_y = 0.014;     // adds CDOM absorption and fluorescence
+  bool anti_stokes = true;            // as BioOptical::anti_stokes
 };
 
 struct Water {

@@ -139,3 +139,25 @@ def test_thesis_energy_convergence_by_interaction(ctx):
     absorbed = r.absorbed_by_interaction / r.tallies["emitted"]
     assert np.all(np.diff(absorbed[1:]) < 0)  # each interaction absorbs less than the one before
     assert r.tallies["past_limit"] / r.tallies["emitted"] < 0.1
+
+
+def test_without_anti_stokes_no_photon_gains_energy(ctx):
+    """Thesis Fig. 5.11 (right): with re-emission toward longer wavelengths only, photons
+    from a 440 nm line never come back below 440 nm (the excitation is a grid sample,
+    and re-emission then starts above it), and the inelastic coefficients shrink by the
+    anti-Stokes share."""
+    grid = (400.0, 700.0, 5.0)
+    both, stokes = ocean.Water("baltic"), ocean.Water("baltic", anti_stokes=False)
+    cb, cs = both.coefficients(grid=grid, context=ctx), stokes.coefficients(grid=grid, context=ctx)
+    inelastic = [1, 4, 6]
+    assert np.all(cs["events"][inelastic] <= cb["events"][inelastic] * (1 + 1e-12))
+    assert cs["events"][inelastic].sum() < cb["events"][inelastic].sum()
+    np.testing.assert_allclose(cs["extinction"], cb["extinction"], rtol=1e-12)  # only the split changes
+    line = ocean.Light.point((0, 0, 0), ([439, 440, 441], [0, 1, 0]))
+    kw = dict(grid=grid, store=True, max_interactions=5, context=ctx)
+    r = ocean.trace_photons(stokes, line, 200_000, **kw)
+    inelastic_photons = np.isin(r.photons["events"], inelastic)
+    assert inelastic_photons.sum() > 100
+    assert r.photons["wavelengths"].min() >= 440.0
+    r = ocean.trace_photons(both, line, 200_000, **kw)
+    assert r.photons["wavelengths"].min() < 440.0  # with anti-Stokes some do

@@ -146,7 +146,8 @@ class PhaseFunctionStruct(ctypes.Structure):
 class BioOpticalStruct(ctypes.Structure):
     _fields_ = [(name, c_double) for name in (
         "chlorophyll", "a_d400", "a_y440", "s_d", "s_y", "chlorophyll_yield", "cdom_yield_scale", "raman_scale",
-        "detritus_scattering_reference_a_d400")] + [("detritus_phase", PhaseFunctionStruct)]
+        "detritus_scattering_reference_a_d400")] + [("detritus_phase", PhaseFunctionStruct),
+                                                    ("stokes_only", c_int32)]
 
 
 class WaterIopsStruct(ctypes.Structure):
@@ -159,6 +160,7 @@ class WaterIopsStruct(ctypes.Structure):
         ("chlorophyll_yield", c_double),
         ("a_y440", c_double),
         ("s_y", c_double),
+        ("stokes_only", c_int32),
     ]
 
 

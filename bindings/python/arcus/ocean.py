@@ -128,11 +128,16 @@ class Water:
             _lib.check(lib.arcus_bio_optical_preset(preset.encode(), byref(bio)))
         self.preset = preset
         self._iops = None
-        names = [f for f, _ in _lib.BioOpticalStruct._fields_ if f != "detritus_phase"]
-        self.parameters = {n: getattr(bio, n) for n in names}
+        names = [f for f, _ in _lib.BioOpticalStruct._fields_ if f not in ("detritus_phase", "stokes_only")]
+        names.append("anti_stokes")
+        self.parameters = {n: getattr(bio, n) for n in names[:-1]}
+        self.parameters["anti_stokes"] = not bio.stokes_only
         for key, value in parameters.items():
             if key not in self.parameters:
                 raise ArgumentError("Water: unknown parameter %r (expected one of %s)" % (key, ", ".join(names)))
+            if key == "anti_stokes":
+                self.parameters[key] = bool(value)
+                continue
             try:
                 self.parameters[key] = float(value)
             except (TypeError, ValueError) as exc:
@@ -141,7 +146,7 @@ class Water:
 
     @classmethod
     def from_iops(cls, absorption, scattering, phase=("hg", 0.9), raman=False, chlorophyll=0.0,
-                  chlorophyll_yield=0.1, a_y440=0.0, s_y=0.014):
+                  chlorophyll_yield=0.1, a_y440=0.0, s_y=0.014, anti_stokes=True):
         """Water given by absorption and scattering spectra [1/m] and a phase function,
         optionally with Raman and the fluorescent constituents added."""
         w = cls.__new__(cls)
@@ -149,7 +154,7 @@ class Water:
         w.parameters = {}
         w._iops = dict(absorption=absorption, scattering=scattering, phase=phase, raman=bool(raman),
                        chlorophyll=float(chlorophyll), chlorophyll_yield=float(chlorophyll_yield),
-                       a_y440=float(a_y440), s_y=float(s_y))
+                       a_y440=float(a_y440), s_y=float(s_y), anti_stokes=bool(anti_stokes))
         return w
 
     def __repr__(self):
@@ -164,7 +169,10 @@ class Water:
         if self._iops is None:
             bio = _lib.BioOpticalStruct()
             for k, v in self.parameters.items():
-                setattr(bio, k, v)
+                if k == "anti_stokes":
+                    bio.stokes_only = int(not v)
+                else:
+                    setattr(bio, k, v)
             bio.detritus_phase = self._detritus_phase
             ctx._check(lib.arcus_water_create(ctx._handle, byref(bio), byref(out)))
         else:
@@ -176,6 +184,7 @@ class Water:
             s.raman = int(o["raman"])
             s.chlorophyll, s.chlorophyll_yield = o["chlorophyll"], o["chlorophyll_yield"]
             s.a_y440, s.s_y = o["a_y440"], o["s_y"]
+            s.stokes_only = int(not o["anti_stokes"])
             ctx._check(lib.arcus_water_create_iops(ctx._handle, byref(s), byref(out)))
         return out
 
