@@ -3,13 +3,16 @@
 // Every api_*.cpp goes through these and nothing else.
 #pragma once
 
+#include <algorithm>
 #include <mutex>
 #include <new>
 #include <string>
+#include <vector>
 
 #include "core/context.h"
 #include "core/error.h"
 #include "core/handle.h"
+#include "core/job.h"
 
 namespace arcus::api {
 
@@ -137,6 +140,28 @@ T* object_of(arcus_context_t* ctx, const void* p, HandleType type, const char* n
   if (h->owner() != ctx)
     fail(ARCUS_ERROR_INVALID_ARGUMENT, std::string(name) + " belongs to another context");
   return static_cast<T*>(h);
+}
+
+// The job behind a handle as engine job type T (each engine derives its own from
+// arcus_job_s); another engine's job is INVALID_ARGUMENT: "job is a render job, not
+// <what>".
+template <class T>
+T* job_as(arcus_job_s* job, const char* what) {
+  auto* t = dynamic_cast<T*>(job);
+  if (!t) fail(ARCUS_ERROR_INVALID_ARGUMENT, std::string("job is a ") + job->kind + " job, not " + what);
+  return t;
+}
+
+// A getter on a job of type T: body(T*) under its context's lock.
+template <class T, class Body>
+arcus_status on_job(arcus_job_t* job, const char* what, Body&& body) {
+  return simple<arcus_job_s>(job, HandleType::Job, "job", [&](arcus_job_s* j) { body(job_as<T>(j, what)); });
+}
+
+// Copies a result out to a caller's array, which may be NULL (not wanted).
+template <class T>
+void copy_out(const std::vector<T>& from, T* to) {
+  if (to) std::copy(from.begin(), from.end(), to);
 }
 
 }  // namespace arcus::api

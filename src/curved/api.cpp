@@ -33,20 +33,9 @@ arcus_status make_field(arcus_context_t* ctx, arcus_field_t** out, Build&& build
 }
 
 // The results of an advance job; another engine's job is an invalid argument.
-AdvanceJob* advance_job(arcus_job_s* job) {
-  auto* a = dynamic_cast<AdvanceJob*>(job);
-  if (!a) arcus::fail(ARCUS_ERROR_INVALID_ARGUMENT, std::string("job is a ") + job->kind + " job, not an advance job");
-  return a;
-}
-
 template <class Body>
 arcus_status on_advance_job(arcus_job_t* job, Body&& body) {
-  return simple<arcus_job_s>(job, HandleType::Job, "job", [&](arcus_job_s* j) { body(advance_job(j)); });
-}
-
-template <class T>
-void copy_out(const std::vector<T>& from, T* to) {
-  if (to) std::copy(from.begin(), from.end(), to);
+  return on_job<AdvanceJob>(job, "an advance job", body);
 }
 
 }  // namespace

@@ -26,6 +26,33 @@ struct arcus_water_s : arcus::Handle {
 
 namespace {
 
+// The ten events and the phase kinds are numbered once for the C API, once for the
+// kernels and once inside: the same numbers, checked here.
+constexpr bool same(int a, int b, int c) { return a == b && b == c; }
+static_assert(same(ARCUS_EVENT_ABSORB_WATER, ocean::kAbsorbWater, ARCUS_OCEAN_ABSORB_WATER) &&
+                  same(ARCUS_EVENT_RAMAN, ocean::kRaman, ARCUS_OCEAN_RAMAN) &&
+                  same(ARCUS_EVENT_ABSORB_DETRITUS, ocean::kAbsorbDetritus, ARCUS_OCEAN_ABSORB_DETRITUS) &&
+                  same(ARCUS_EVENT_ABSORB_PHYTO, ocean::kAbsorbPhyto, ARCUS_OCEAN_ABSORB_PHYTO) &&
+                  same(ARCUS_EVENT_FLUORESCE_PHYTO, ocean::kFluorescePhyto, ARCUS_OCEAN_FLUORESCE_PHYTO) &&
+                  same(ARCUS_EVENT_ABSORB_CDOM, ocean::kAbsorbCdom, ARCUS_OCEAN_ABSORB_CDOM) &&
+                  same(ARCUS_EVENT_FLUORESCE_CDOM, ocean::kFluoresceCdom, ARCUS_OCEAN_FLUORESCE_CDOM) &&
+                  same(ARCUS_EVENT_SCATTER_WATER, ocean::kScatterWater, ARCUS_OCEAN_SCATTER_WATER) &&
+                  same(ARCUS_EVENT_SCATTER_DETRITUS, ocean::kScatterDetritus, ARCUS_OCEAN_SCATTER_DETRITUS) &&
+                  same(ARCUS_EVENT_SCATTER_PHYTO, ocean::kScatterPhyto, ARCUS_OCEAN_SCATTER_PHYTO) &&
+                  same(ARCUS_OCEAN_EVENT_COUNT, ocean::kEventCount, ARCUS_OCEAN_EVENTS),
+              "the events' numbers disagree");
+static_assert(same(ARCUS_PHASE_ISOTROPIC, ocean::Phase::isotropic, ARCUS_OCEAN_PHASE_ISOTROPIC) &&
+                  same(ARCUS_PHASE_RAYLEIGH_LIKE, ocean::Phase::rayleigh_like, ARCUS_OCEAN_PHASE_RAYLEIGH_LIKE) &&
+                  same(ARCUS_PHASE_HG, ocean::Phase::hg, ARCUS_OCEAN_PHASE_HG) &&
+                  same(ARCUS_PHASE_TWO_TERM_HG, ocean::Phase::two_term_hg, ARCUS_OCEAN_PHASE_TWO_TERM_HG) &&
+                  same(ARCUS_PHASE_TABLE, ocean::Phase::table, ARCUS_OCEAN_PHASE_TABLE),
+              "the phase kinds' numbers disagree");
+static_assert(same(ARCUS_OCEAN_LIGHT_POINT, ocean::Light::point, ARCUS_OCEAN_EMIT_POINT) &&
+                  same(ARCUS_OCEAN_LIGHT_SPOT, ocean::Light::spot, ARCUS_OCEAN_EMIT_SPOT) &&
+                  same(ARCUS_OCEAN_LIGHT_DIRECTIONAL, ocean::Light::directional, ARCUS_OCEAN_EMIT_DIRECTIONAL) &&
+                  same(ARCUS_OCEAN_LIGHT_SKY, ocean::Light::sky, ARCUS_OCEAN_EMIT_SKY),
+              "the light kinds' numbers disagree");
+
 std::vector<double> copy_array(const double* p, uint32_t n, const std::string& name) {
   if (n == 0) return {};
   require(p != nullptr, name + " is NULL but its count is " + std::to_string(n));
@@ -113,20 +140,10 @@ arcus_status create_water(arcus_context_t* ctx, arcus_water_t** out, Make&& make
   });
 }
 
-ocean::TraceJob* trace_job(arcus_job_s* job) {
-  auto* t = dynamic_cast<ocean::TraceJob*>(job);
-  if (!t) arcus::fail(ARCUS_ERROR_INVALID_ARGUMENT, std::string("job is a ") + job->kind + " job, not an ocean trace");
-  return t;
-}
-
+// A render job is a trace job too: the trace's getters take either.
 template <class Body>
 arcus_status on_trace_job(arcus_job_t* job, Body&& body) {
-  return simple<arcus_job_s>(job, HandleType::Job, "job", [&](arcus_job_s* j) { body(trace_job(j)); });
-}
-
-template <class T>
-void copy_out(const std::vector<T>& from, T* to) {
-  if (to) std::copy(from.begin(), from.end(), to);
+  return on_job<ocean::TraceJob>(job, "an ocean trace", body);
 }
 
 // What a setup and trace parameters say, as the engine takes it.
@@ -186,15 +203,9 @@ ocean::MarchParams march_of(const arcus_ocean_march& s) {
   return m;
 }
 
-ocean::RenderJob* render_job(arcus_job_s* job) {
-  auto* r = dynamic_cast<ocean::RenderJob*>(job);
-  if (!r) arcus::fail(ARCUS_ERROR_INVALID_ARGUMENT, std::string("job is a ") + job->kind + " job, not an ocean render");
-  return r;
-}
-
 template <class Body>
 arcus_status on_render_job(arcus_job_t* job, Body&& body) {
-  return simple<arcus_job_s>(job, HandleType::Job, "job", [&](arcus_job_s* j) { body(render_job(j)); });
+  return on_job<ocean::RenderJob>(job, "an ocean render", body);
 }
 
 // Runs a render and hands its job out (a cancelled one too, with ARCUS_ERROR_CANCELLED).

@@ -43,19 +43,9 @@ std::string number(double x) {
 // A light's radiant intensity at nm [W/sr/nm]: point lights spread their flux over
 // 4π, spots over their cone's solid angle.
 double intensity(const Light& L, double nm) {
-  const Spectrum& s = L.spectrum;
-  double phi;
-  if (s.nm.size() == 1) {
-    phi = s.values[0];
-  } else if (nm < s.nm.front() || nm > s.nm.back()) {
-    phi = 0;
-  } else {
-    const size_t j = std::min<size_t>(std::upper_bound(s.nm.begin(), s.nm.end(), nm) - s.nm.begin(), s.nm.size() - 1);
-    phi = s.values[j - 1] + (nm - s.nm[j - 1]) / (s.nm[j] - s.nm[j - 1]) * (s.values[j] - s.values[j - 1]);
-  }
   const double solid_angle =
       L.kind == Light::spot ? 2 * kPi * (1 - std::cos(L.half_angle_deg * kPi / 180)) : 4 * kPi;
-  return phi / solid_angle;
+  return light_spectrum(L, nm) / solid_angle;
 }
 
 // Progress of one stage mapped onto [offset, offset + share] of the caller's bar.

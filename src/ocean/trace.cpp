@@ -29,15 +29,6 @@ std::string number(double x) {
 
 bool finite3(const double* v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
 
-// The spectrum's value at nm: linear between its samples, 0 outside (one sample: flat).
-double spectrum_at(const Spectrum& s, double nm) {
-  if (s.nm.size() == 1) return s.values[0];
-  if (nm < s.nm.front() || nm > s.nm.back()) return 0;
-  const size_t j = std::min<size_t>(std::upper_bound(s.nm.begin(), s.nm.end(), nm) - s.nm.begin(), s.nm.size() - 1);
-  const double t = (nm - s.nm[j - 1]) / (s.nm[j] - s.nm[j - 1]);
-  return s.values[j - 1] + t * (s.values[j] - s.values[j - 1]);
-}
-
 // Each light's power in each grid band [W]: its spectrum at the sample times the band
 // (step_nm; the whole spectrum's value for a one-sample grid) times, for directional
 // and sky light, the area it falls on (the beam's disc, or 1 m² of surface).
@@ -48,7 +39,7 @@ std::vector<double> band_powers(const std::vector<Light>& lights, const Medium& 
     const Light& L = lights[l];
     double area = 1;
     if (L.kind == Light::directional && !medium.surface && L.radius > 0) area = kPi * L.radius * L.radius;
-    for (int k = 0; k < grid.count; ++k) w[l * grid.count + k] = spectrum_at(L.spectrum, grid.nm(k)) * band * area;
+    for (int k = 0; k < grid.count; ++k) w[l * grid.count + k] = light_spectrum(L, grid.nm(k)) * band * area;
   }
   return w;
 }
@@ -142,6 +133,15 @@ int32_t tally_rows(const arcus_context_t* ctx, uint64_t photons) {
 }
 
 }  // namespace
+
+double light_spectrum(const Light& light, double nm) {
+  const Spectrum& s = light.spectrum;
+  if (s.nm.size() == 1) return s.values[0];
+  if (nm < s.nm.front() || nm > s.nm.back()) return 0;
+  const size_t j = std::min<size_t>(std::upper_bound(s.nm.begin(), s.nm.end(), nm) - s.nm.begin(), s.nm.size() - 1);
+  const double t = (nm - s.nm[j - 1]) / (s.nm[j] - s.nm[j - 1]);
+  return s.values[j - 1] + t * (s.values[j] - s.values[j - 1]);
+}
 
 double Tallies::escaped() const {
   return std::accumulate(escaped_by_interaction.begin(), escaped_by_interaction.end(), 0.0);

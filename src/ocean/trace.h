@@ -31,6 +31,9 @@ struct Light {
   Spectrum spectrum{{550}, {1}};
 };
 
+// A light's spectrum at nm (Light::spectrum: linear, 0 outside, one sample flat).
+double light_spectrum(const Light& light, double nm);
+
 // Where the water is.  Default: unbounded.  Plane-parallel columns: surface (a flat
 // air–water interface at z = 0, Fresnel both ways) or box_hi z = 0 (a free top, no
 // interface), water below, optionally a Lambertian bottom.

@@ -21,20 +21,9 @@ arcus_status on_renderer(arcus_renderer_t* r, Body&& body) {
   return simple<arcus_renderer_s>(r, HandleType::Renderer, "renderer", body);
 }
 
-RenderJob* render_job(arcus_job_s* job) {
-  auto* r = dynamic_cast<RenderJob*>(job);
-  if (!r) arcus::fail(ARCUS_ERROR_INVALID_ARGUMENT, std::string("job is a ") + job->kind + " job, not a render job");
-  return r;
-}
-
 template <class Body>
 arcus_status on_render_job(arcus_job_t* job, Body&& body) {
-  return simple<arcus_job_s>(job, HandleType::Job, "job", [&](arcus_job_s* j) { body(render_job(j)); });
-}
-
-template <class T>
-void copy_out(const std::vector<T>& from, T* to) {
-  if (to) std::copy(from.begin(), from.end(), to);
+  return on_job<RenderJob>(job, "a render job", body);
 }
 
 arcus::render::CameraDesc camera_desc(const arcus_camera& c) {
