@@ -14,6 +14,7 @@
 #include "core/buffer.h"
 #include "core/context.h"
 #include "core/error.h"
+#include "core/slices.h"
 #include "ocean/trace.h"
 #include "ocean/water.h"
 #include "unit_util.h"
@@ -227,6 +228,25 @@ TEST(OceanTrace, DeterminismSameSeedSameTalliesBitForBit) {
   EXPECT_EQ(a->photons.positions, b->photons.positions);
   EXPECT_EQ(a->photons.wavelengths, b->photons.wavelengths);
   EXPECT_GT(a->photons.size(), 0u);
+}
+
+TEST(OceanTrace, DeterminismLaunchSizesDoNotChangeTheTallies) {
+  // Work-item r traces photons r, r + rows, ... into its own row whatever the slices,
+  // and the host sums the rows in order: slices of 1000 photons give the very tallies.
+  Context ctx;
+  Grid g{400, 10, 31};
+  WaterTables w = constant_water(g, {0.05, 0.02, 0.02, 0.03, 0.02, 0.01, 0.02, 0.1, 0.3, 0.05});
+  TraceParams p;
+  p.photons = 30000;
+  p.store = true;
+  const auto whole = run(ctx, w, {point_light(500)}, Medium{}, p);
+  arcus::testing::set_slice_units(1000);
+  const auto sliced = run(ctx, w, {point_light(500)}, Medium{}, p);
+  arcus::testing::set_slice_units(0);
+  EXPECT_GT(sliced->stats.launches, whole->stats.launches);
+  EXPECT_EQ(whole->tallies.absorbed_by_interaction, sliced->tallies.absorbed_by_interaction);
+  EXPECT_EQ(whole->tallies.arriving, sliced->tallies.arriving);
+  EXPECT_EQ(whole->photons.positions, sliced->photons.positions);
 }
 
 TEST(OceanTrace, WaterWithoutInelasticEventsCompilesNoInelasticCode) {

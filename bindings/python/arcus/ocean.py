@@ -402,14 +402,15 @@ def _read_trace(ctx, job, grid, depths, store):
 
 def profile(water, sun_zenith, depths, *, photons=400_000, grid=(380.0, 780.0, 5.0), sun=1.0, sky=0.0,
             surface=True, n_water=1.34, bottom_depth=math.inf, bottom_albedo=0.0, layer=None, seed=1,
-            max_interactions=64, context=None):
+            max_interactions=10_000, progress=None, context=None):
     """Irradiance profiles of a plane-parallel column, as oceanographers use them: the
-    sun at ``sun_zenith`` degrees (spectrum ``sun``, W/m²/nm on a surface facing it ×
-    cos zenith... given as plane irradiance on the surface) and optionally a uniform sky
-    (``sky``, W/m²/nm of plane irradiance) above a flat surface (``surface=False``: the
-    beam starts just below, no interface, refracted angle = ``sun_zenith``).  Returns
-    the :class:`TraceResult`, with ``Ed``, ``Eu``, ``E0`` and :func:`diffuse_attenuation`
-    for K_d."""
+    sun at ``sun_zenith`` degrees (``sun``: its plane irradiance on the horizontal
+    surface, W/m²/nm) and optionally a uniform sky (``sky``, W/m²/nm of plane
+    irradiance) above a flat surface with Fresnel transmission (``surface=False``: the
+    beam starts just below a free top, no interface, at ``sun_zenith`` in the water).
+    Photons are followed until absorbed or gone (``max_interactions``, 10 000, is a
+    safety net).  Returns the :class:`TraceResult`, with ``Ed``, ``Eu``, ``E0`` and
+    :func:`diffuse_attenuation` for K_d."""
     lights = [Light.sun(sun_zenith, sun)]
     if sky:
         lights.append(Light.sky(sky))
@@ -420,7 +421,7 @@ def profile(water, sun_zenith, depths, *, photons=400_000, grid=(380.0, 780.0, 5
     box = None if surface else ((-math.inf, -math.inf, -math.inf), (math.inf, math.inf, 0.0))
     return trace_photons(water, lights, photons, max_interactions, seed, grid=grid, depths=depths, layer=layer,
                          surface=surface, n_water=n_water, bottom_depth=bottom_depth, bottom_albedo=bottom_albedo,
-                         box=box, context=context)
+                         box=box, progress=progress, context=context)
 
 
 def diffuse_attenuation(depths, irradiance):
