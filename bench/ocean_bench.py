@@ -535,8 +535,8 @@ def write_md(path, m, args, plan, trace_rows, ref, noise, sweep, full, eq, eq_fu
     add("")
     add("Seconds per stage, wall intervals inside the render that sum to its total: trace (photons), map (k-d map; "
         "beam: + the photons' k-nearest radii and their BVH), estimate (= total − trace − map: light tables, the "
-        "march kernel, colour).  `lib est` is the library's own `estimate_seconds` (for the beam it also counts "
-        "the radii/BVH interval, see bench/README.md); kernel = device time of the launches (march; trace).")
+        "march kernel, colour).  `lib est` is the library's own `estimate_seconds`; kernel = device time of the "
+        "launches (march; trace).")
     add("")
     add("| kind | estimator | size | photons | k | steps | seed | trace | map | estimate | total | wall | lib est | "
         "kernel | stored | error spectral | error sRGB |")

@@ -80,7 +80,7 @@ def test_same_seed_same_image(tmp_path, ctx):
            "view": view(width=8, height=6, steps=50)}
     path = write_scene(tmp_path, doc)
     a = ocean.render(path, context=ctx)
-    b = ocean.render(path, context=ctx)
+    b = ocean.render(doc, context=ctx)  # a dict: the same scene
     np.testing.assert_array_equal(a.spectral, b.spectral)
     assert a.tallies["photons"] == 50000
 

@@ -477,20 +477,24 @@ def _read_image(ctx, job, exr, png, spectral_bands):
 
 def render(scene, *, photons=None, k=None, steps=None, estimator=None, exr=None, png=None, spectral=False,
            progress=None, context=None):
-    """Renders an ocean scene file (scenes/README.md, "Ocean scenes"; read and checked
-    by the library) — its "view" — and returns an :class:`OceanImage`; writes ``exr``
-    (linear; with ``spectral``, a channel per wavelength) and ``png`` (sRGB) if given.
-    ``photons``, ``k``, ``steps``, ``estimator`` ("per_step" or "beam") override the
-    scene's."""
+    """Renders an ocean scene — a file (scenes/README.md, "Ocean scenes"; read and
+    checked by the library) or a dict of the same schema — its "view", and returns an
+    :class:`OceanImage`; writes ``exr`` (linear; with ``spectral``, a channel per
+    wavelength) and ``png`` (sRGB) if given.  ``photons``, ``k``, ``steps``,
+    ``estimator`` ("per_step" or "beam") override the scene's."""
     import json
     import os
     import tempfile
     from ._args import to_path
     overrides = dict(photons=photons, k=k, steps=steps, estimator=estimator)
-    if any(v is not None for v in overrides.values()):
-        # The library reads scene files: the overrides go through a copy beside it.
-        with open(scene) as f:
-            doc = json.load(f)
+    if isinstance(scene, dict) or any(v is not None for v in overrides.values()):
+        # The library reads scene files: a dict, or a file with overrides, goes through
+        # a copy (ocean scenes name no other files, so it may live anywhere).
+        if isinstance(scene, dict):
+            doc = json.loads(json.dumps(scene))
+        else:
+            with open(scene) as f:
+                doc = json.load(f)
         if photons is not None:
             doc.setdefault("photons", {})["count"] = int(photons)
         march = doc.setdefault("view", {}).setdefault("march", {})
