@@ -11,6 +11,7 @@
 #include "ocean/render.h"
 #include "ocean/scene.h"
 #include "ocean/trace.h"
+#include "render/scene_desc.h"
 #include "ocean/water.h"
 
 using arcus::HandleType;
@@ -413,7 +414,7 @@ arcus_status arcus_ocean_render(arcus_context_t* ctx, arcus_water_t* water, cons
     auto* w = arcus::api::object_of<arcus_water_s>(ctx, water, HandleType::Water, "water");
     const TraceInput in = trace_input(setup, params);
     const ocean::MarchParams m = march_of(*march);
-    ocean::check_camera(*camera);
+    arcus::render::check_camera(arcus::render::camera_desc(*camera), "camera");
     ocean::check_march(m);
     ocean::check_trace(in.lights, in.medium, in.params);
     const ocean::WaterTables tables = ocean::evaluate(w->water, grid_of(setup->grid));

@@ -12,6 +12,7 @@
 #include "core/features.h"
 #include "core/slices.h"
 #include "photon/photon_map.h"
+#include "render/scene_desc.h"  // the pinhole camera's checks, shared
 #include "spectral/cie.h"
 #include "spectral/srgb.h"
 
@@ -135,20 +136,6 @@ photon::Photons map_photons(const StoredPhotons& s, const Grid& grid) {
 
 }  // namespace
 
-void check_camera(const arcus_camera& c) {
-  auto finite3 = [](const double* v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); };
-  require(finite3(c.position) && finite3(c.look_at) && finite3(c.up), "camera: position, look_at and up must be finite");
-  const double f[3] = {c.look_at[0] - c.position[0], c.look_at[1] - c.position[1], c.look_at[2] - c.position[2]};
-  require(std::hypot(f[0], f[1], f[2]) > 0, "camera.look_at: must differ from the position");
-  const double x[3] = {f[1] * c.up[2] - f[2] * c.up[1], f[2] * c.up[0] - f[0] * c.up[2], f[0] * c.up[1] - f[1] * c.up[0]};
-  require(std::hypot(x[0], x[1], x[2]) > 0, "camera.up: must not be zero or parallel to the view direction");
-  require(std::isfinite(c.vfov_deg) && c.vfov_deg > 0 && c.vfov_deg < 180,
-          "camera.vfov_deg: must be in (0, 180), got " + number(c.vfov_deg));
-  require(c.width >= 1 && c.height >= 1 && c.width <= 16384 && c.height <= 16384 &&
-              uint64_t(c.width) * c.height <= (uint64_t(1) << 28),
-          "camera: width and height must be in 1..16384 (and at most 2^28 pixels)");
-}
-
 void check_march(const MarchParams& m) {
   require(m.steps >= 1 && m.steps <= 1000000, "march.steps: must be in 1..1000000, got " + std::to_string(m.steps));
   require(std::isfinite(m.distance) && m.distance > 0, "march.distance: must be finite and > 0, got " + number(m.distance));
@@ -172,7 +159,7 @@ std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const WaterTables& w, co
                                   const MarchParams& march, arcus_progress_callback progress, void* user,
                                   bool* cancelled) {
   const auto t0 = std::chrono::steady_clock::now();
-  check_camera(camera);
+  render::check_camera(render::camera_desc(camera), "camera");
   check_march(march);
   check_trace(lights, medium, trace_params);
   for (size_t l = 0; l < lights.size(); ++l)

@@ -26,19 +26,6 @@ arcus_status on_render_job(arcus_job_t* job, Body&& body) {
   return on_job<RenderJob>(job, "a render job", body);
 }
 
-arcus::render::CameraDesc camera_desc(const arcus_camera& c) {
-  arcus::render::CameraDesc d;
-  for (int a = 0; a < 3; ++a) {
-    d.position[a] = c.position[a];
-    d.look_at[a] = c.look_at[a];
-    d.up[a] = c.up[a];
-  }
-  d.vfov_deg = c.vfov_deg;
-  d.width = c.width;
-  d.height = c.height;
-  return d;
-}
-
 }  // namespace
 
 extern "C" {
@@ -76,7 +63,7 @@ arcus_status arcus_renderer_get_techniques(arcus_renderer_t* r, uint32_t* techni
 arcus_status arcus_renderer_set_camera(arcus_renderer_t* r, const arcus_camera* camera) {
   return on_renderer(r, [&](arcus_renderer_s* x) {
     require_pointer(camera, "camera");
-    const arcus::render::CameraDesc d = camera_desc(*camera);
+    const arcus::render::CameraDesc d = arcus::render::camera_desc(*camera);
     arcus::render::check_camera(d, "camera");
     for (int a = 0; a < 3; ++a)
       require(d.position[a] > x->scene->lo[a] && d.position[a] < x->scene->hi[a],

@@ -257,6 +257,19 @@ void check_camera(const CameraDesc& c, const std::string& what) {
           what + ": width and height must be 1.." + std::to_string(kMaxSide) + " pixels");
 }
 
+CameraDesc camera_desc(const arcus_camera& c) {
+  CameraDesc d;
+  for (int a = 0; a < 3; ++a) {
+    d.position[a] = c.position[a];
+    d.look_at[a] = c.look_at[a];
+    d.up[a] = c.up[a];
+  }
+  d.vfov_deg = c.vfov_deg;
+  d.width = c.width;
+  d.height = c.height;
+  return d;
+}
+
 uint32_t parse_techniques(const std::string& list) {
   static const std::pair<const char*, uint32_t> kNames[] = {{"smart_step", ARCUS_TECHNIQUE_SMART_STEP},
                                                             {"symmetry", ARCUS_TECHNIQUE_SYMMETRY},

@@ -88,6 +88,8 @@ RenderDesc parse_render_file(const std::string& path);
 // Checks a camera: finite, look_at != position, up not along the view, 0 < vfov < 180,
 // 1..16384 pixels a side.  Throws INVALID_ARGUMENT naming `what`'s member.
 void check_camera(const CameraDesc& camera, const std::string& what);
+// The C API's camera as a description (every engine with a pinhole camera shares it).
+CameraDesc camera_desc(const arcus_camera& camera);
 
 // "smart_step,symmetry" -> bits; throws INVALID_ARGUMENT naming an unknown one.
 uint32_t parse_techniques(const std::string& list);
