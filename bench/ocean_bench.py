@@ -28,7 +28,6 @@ import math
 import os
 import statistics
 import sys
-import tempfile
 import time
 
 import numpy as np
@@ -149,24 +148,17 @@ def bench_trace(ctx, doc, plan):
 # ---- 2. images --------------------------------------------------------------------------
 
 def render(ctx, scene_path, doc, *, size, photons, k, steps, estimator, seed, progress=None):
-    """Renders ``doc`` with these settings (a copy of the scene written beside it, so its
-    relative paths hold); returns (OceanImage, wall seconds)."""
+    """Renders ``doc`` (the scene read from ``scene_path``) with these settings; returns
+    (OceanImage, wall seconds)."""
     d = json.loads(json.dumps(doc))
     d["view"]["camera"]["width"], d["view"]["camera"]["height"] = int(size[0]), int(size[1])
     ph = d.setdefault("photons", {})
     ph["count"], ph["seed"] = int(photons), int(seed)
     march = d["view"].setdefault("march", {})
     march["k"], march["steps"], march["estimator"] = int(k), int(steps), estimator
-    base = os.path.dirname(os.path.abspath(scene_path))
-    with tempfile.NamedTemporaryFile("w", suffix=".json", prefix=".ocean_bench_", dir=base, delete=False) as f:
-        json.dump(d, f)
-    try:
-        t0 = time.perf_counter()
-        img = ocean.render(f.name, context=ctx, progress=progress)
-        wall = time.perf_counter() - t0
-    finally:
-        os.unlink(f.name)
-    return img, wall
+    t0 = time.perf_counter()
+    img = ocean.render(d, context=ctx, progress=progress)
+    return img, time.perf_counter() - t0
 
 
 def rel_rms(a, ref):
