@@ -12,14 +12,17 @@
 
 namespace {
 
-// Every bit the public headers define (arcus_core.h, arcus_curved.h).
+// Every bit the public headers define (arcus_core.h, arcus_curved.h, arcus_render.h,
+// arcus_ocean.h).
 const arcus_features kPublic[] = {
     ARCUS_FEATURE_FLOAT,           ARCUS_FEATURE_STRAIGHT,         ARCUS_FEATURE_EULER,
     ARCUS_FEATURE_RK2,             ARCUS_FEATURE_RK4,              ARCUS_FEATURE_DP45,
     ARCUS_FEATURE_FIELD_LINEAR,    ARCUS_FEATURE_FIELD_LINEAR_N2,  ARCUS_FEATURE_FIELD_LUNEBURG,
     ARCUS_FEATURE_FIELD_FISHEYE,   ARCUS_FEATURE_FIELD_ATMOSPHERE, ARCUS_FEATURE_FIELD_GRID,
     ARCUS_FEATURE_BOX,             ARCUS_FEATURE_RECORD_PATH,      ARCUS_FEATURE_DISPERSION,
-    ARCUS_FEATURE_GEOMETRY,        ARCUS_FEATURE_RECORD_STATE};
+    ARCUS_FEATURE_GEOMETRY,        ARCUS_FEATURE_RECORD_STATE,     ARCUS_FEATURE_OCEAN_INELASTIC,
+    ARCUS_FEATURE_OCEAN_BOUNDARIES, ARCUS_FEATURE_OCEAN_DEPTHS,    ARCUS_FEATURE_OCEAN_PHOTON_MAP,
+    ARCUS_FEATURE_OCEAN_BEAM};
 
 TEST(FeatureTables, EveryPublicBitIsInExactlyOneTableWithItsOwnNameAndOptions) {
   std::set<arcus_features> bits;
