@@ -27,15 +27,22 @@ arcus_water_t* thesis_water(arcus_context_t* ctx) {
   return w;
 }
 
-// A point lamp of 1 W/nm at the origin.
+// A point lamp of 1 W/nm at the origin, and a default setup and trace it lights.
 struct Lamp {
   double nm = 550, value = 1;
   arcus_ocean_light light{};
+  arcus_ocean_setup setup;
+  arcus_ocean_trace_params params;
   Lamp() {
     light.kind = ARCUS_OCEAN_LIGHT_POINT;
     light.spectrum = {1, &nm, &value};
     light.half_angle_deg = 30;
+    arcus_ocean_setup_init(&setup);
+    setup.light_count = 1;
+    setup.lights = &light;
+    arcus_ocean_trace_params_init(&params);
   }
+  Lamp(const Lamp&) = delete;  // setup points at light
 };
 
 TEST(OceanApi, DefaultsAreTheThesis) {
@@ -89,12 +96,8 @@ TEST(OceanApi, BadInputNamesTheArgumentAndLosesNothing) {
 
   w = thesis_water(c.ctx);
   Lamp lamp;
-  arcus_ocean_setup s;
-  arcus_ocean_setup_init(&s);
-  s.light_count = 1;
-  s.lights = &lamp.light;
-  arcus_ocean_trace_params p;
-  arcus_ocean_trace_params_init(&p);
+  arcus_ocean_setup& s = lamp.setup;
+  arcus_ocean_trace_params& p = lamp.params;
   p.photons = 1000;
   arcus_job_t* job = nullptr;
   s.bottom_albedo = 1.5;
@@ -107,8 +110,7 @@ TEST(OceanApi, BadInputNamesTheArgumentAndLosesNothing) {
   EXPECT_NE(std::string(arcus_context_last_error(c.ctx)).find("grid"), std::string::npos);
   arcus_ocean_setup_init(&s);
   s.light_count = 1;
-  s.lights = &lamp.light;
-  // The water still works after the failures.
+  s.lights = &lamp.light;  // a fresh setup: the water still works after the failures
   ASSERT_EQ(arcus_ocean_trace(c.ctx, w, &s, &p, &job), ARCUS_SUCCESS) << arcus_context_last_error(c.ctx);
   // An ocean job is no render job, and a trace has no image.
   arcus_render_stats rs;
@@ -124,12 +126,8 @@ TEST(OceanApi, ATraceBalancesItsEnergyAndReportsItsFeatures) {
   Ctx c;
   arcus_water_t* w = thesis_water(c.ctx);
   Lamp lamp;
-  arcus_ocean_setup s;
-  arcus_ocean_setup_init(&s);
-  s.light_count = 1;
-  s.lights = &lamp.light;
-  arcus_ocean_trace_params p;
-  arcus_ocean_trace_params_init(&p);
+  arcus_ocean_setup& s = lamp.setup;
+  arcus_ocean_trace_params& p = lamp.params;
   p.photons = 20000;
   arcus_job_t* job = nullptr;
   ASSERT_EQ(arcus_ocean_trace(c.ctx, w, &s, &p, &job), ARCUS_SUCCESS) << arcus_context_last_error(c.ctx);
@@ -159,12 +157,8 @@ TEST(OceanApi, ACancelledTraceKeepsWhatItTraced) {
   Ctx c;
   arcus_water_t* w = thesis_water(c.ctx);
   Lamp lamp;
-  arcus_ocean_setup s;
-  arcus_ocean_setup_init(&s);
-  s.light_count = 1;
-  s.lights = &lamp.light;
-  arcus_ocean_trace_params p;
-  arcus_ocean_trace_params_init(&p);
+  arcus_ocean_setup& s = lamp.setup;
+  arcus_ocean_trace_params& p = lamp.params;
   p.photons = 50000000;  // far more than one slice
   p.progress = cancel_at_once;
   arcus_job_t* job = nullptr;
@@ -197,13 +191,9 @@ TEST(OceanApi, ASceneFileRendersAnImage) {
   Lamp lamp;
   lamp.light.position[0] = 4;
   lamp.light.position[2] = -10;
-  arcus_ocean_setup s;
-  arcus_ocean_setup_init(&s);
+  arcus_ocean_setup& s = lamp.setup;
   s.grid = {400, 50, 7};
-  s.light_count = 1;
-  s.lights = &lamp.light;
-  arcus_ocean_trace_params p;
-  arcus_ocean_trace_params_init(&p);
+  arcus_ocean_trace_params& p = lamp.params;
   p.photons = 20000;
   arcus_camera cam{{0, 0, -10}, {1, 0, -10}, {0, 0, 1}, 50, 8, 6};
   arcus_ocean_march m;

@@ -51,6 +51,18 @@ WaterTables constant_water(const Grid& grid, const std::array<double, 10>& event
   return w;
 }
 
+// Water with all ten events, 400–700 nm at 10 nm (the determinism tests').
+WaterTables every_event_water() {
+  return constant_water(Grid{400, 10, 31}, {0.05, 0.02, 0.02, 0.03, 0.02, 0.01, 0.02, 0.1, 0.3, 0.05});
+}
+
+TraceParams stored_trace(uint64_t photons) {
+  TraceParams p;
+  p.photons = photons;
+  p.store = true;
+  return p;
+}
+
 Light point_light(double nm) {
   Light L;
   L.kind = Light::point;
@@ -216,11 +228,8 @@ TEST(OceanTrace, BookkeepingBalancesWithSurfaceBottomAndInelasticEvents) {
 
 TEST(OceanTrace, DeterminismSameSeedSameTalliesBitForBit) {
   Context ctx;
-  Grid g{400, 10, 31};
-  WaterTables w = constant_water(g, {0.05, 0.02, 0.02, 0.03, 0.02, 0.01, 0.02, 0.1, 0.3, 0.05});
-  TraceParams p;
-  p.photons = 30000;
-  p.store = true;
+  const WaterTables w = every_event_water();
+  const TraceParams p = stored_trace(30000);
   const auto a = run(ctx, w, {point_light(500)}, Medium{}, p);
   const auto b = run(ctx, w, {point_light(500)}, Medium{}, p);
   EXPECT_EQ(a->tallies.absorbed_by_interaction, b->tallies.absorbed_by_interaction);
@@ -234,11 +243,8 @@ TEST(OceanTrace, DeterminismLaunchSizesDoNotChangeTheTallies) {
   // Work-item r traces photons r, r + rows, ... into its own row whatever the slices,
   // and the host sums the rows in order: slices of 1000 photons give the very tallies.
   Context ctx;
-  Grid g{400, 10, 31};
-  WaterTables w = constant_water(g, {0.05, 0.02, 0.02, 0.03, 0.02, 0.01, 0.02, 0.1, 0.3, 0.05});
-  TraceParams p;
-  p.photons = 30000;
-  p.store = true;
+  const WaterTables w = every_event_water();
+  const TraceParams p = stored_trace(30000);
   const auto whole = run(ctx, w, {point_light(500)}, Medium{}, p);
   arcus::testing::set_slice_units(1000);
   const auto sliced = run(ctx, w, {point_light(500)}, Medium{}, p);
