@@ -16,5 +16,6 @@
 #include "arcus_curved.h"
 #include "arcus_render.h"
 #include "arcus_ocean.h"
+#include "arcus_rainbow.h"
 
 #endif /* ARCUS_ARCUS_H */

@@ -193,7 +193,7 @@ ARCUS_INLINE int bvh_segment_next(ARCUS_GLOBAL const bvh_node* nodes, ARCUS_GLOB
         w->end = first + nodes[n].count;
         break;
       }
-      REAL n0, n1;
+      REAL n0 = 0, n1 = 0;
       const int h0 = bvh_ray_box(r, nodes + first, t_max, &n0), h1 = bvh_ray_box(r, nodes + first + 1, t_max, &n1);
       *tests += 2;
       if (h0 && h1) {

@@ -30,6 +30,7 @@ const char* handle_type_name(HandleType type) {
     case HandleType::Scene: return "scene";
     case HandleType::Renderer: return "renderer";
     case HandleType::Water: return "water";
+    case HandleType::Particle: return "particle";
   }
   return "object";
 }

@@ -12,7 +12,7 @@
 
 namespace arcus {
 
-enum class HandleType : uint32_t { Context, Field, Job, Scene, Renderer, Water };
+enum class HandleType : uint32_t { Context, Field, Job, Scene, Renderer, Water, Particle };
 
 // "context", "field", "job", "scene", "renderer", "water".
 const char* handle_type_name(HandleType type);

@@ -22,7 +22,7 @@ const arcus_features kPublic[] = {
     ARCUS_FEATURE_BOX,             ARCUS_FEATURE_RECORD_PATH,      ARCUS_FEATURE_DISPERSION,
     ARCUS_FEATURE_GEOMETRY,        ARCUS_FEATURE_RECORD_STATE,     ARCUS_FEATURE_OCEAN_INELASTIC,
     ARCUS_FEATURE_OCEAN_BOUNDARIES, ARCUS_FEATURE_OCEAN_DEPTHS,    ARCUS_FEATURE_OCEAN_PHOTON_MAP,
-    ARCUS_FEATURE_OCEAN_BEAM};
+    ARCUS_FEATURE_OCEAN_BEAM,      ARCUS_FEATURE_RAINBOW_IMPLICIT, ARCUS_FEATURE_RAINBOW_MESH};
 
 TEST(FeatureTables, EveryPublicBitIsInExactlyOneTableWithItsOwnNameAndOptions) {
   std::set<arcus_features> bits;
@@ -61,7 +61,7 @@ TEST(FeatureTables, AnUnknownBitIsAnError) {
     EXPECT_NE(std::string(e.what()).find("bit 63"), std::string::npos) << e.what();
   }
   char buffer[64];
-  EXPECT_EQ(arcus_features_to_string(arcus_features(1) << 40, buffer, sizeof buffer), ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(arcus_features_to_string(arcus_features(1) << 50, buffer, sizeof buffer), ARCUS_ERROR_INVALID_ARGUMENT);
 }
 
 }  // namespace

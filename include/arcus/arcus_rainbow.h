@@ -1,0 +1,156 @@
+/*
+ * arcus rainbows (thesis §2.1.1, §2.2.3, §4.4, §5.5; Sadeghi et al., ACM TOG 31(1),
+ * 2012): phase functions of single particles (spheres, the thesis' raindrop, any closed
+ * triangle mesh) from rays cast on a grid over the particle's projection, each carrying
+ * the phasors of two incident polarisations and its optical path through every
+ * reflection and refraction, collected on a sphere of patches that are queried through
+ * the shared BVH and summed with their phases (interference); and, for spheres, our own
+ * Lorenz–Mie with its Debye-series terms.  Include arcus.h.
+ *
+ * Units: metres for sizes, nanometres for wavelengths, degrees for angles.  Frame: the
+ * light travels along +z, its "horizontal" polarisation along x and "vertical" along y;
+ * a scattering direction is (θ, φ) with θ from +z and φ from +x toward +y.  "Parallel"
+ * and "perpendicular" are the scattered light's components along e_θ (in the
+ * scattering plane) and e_φ (normal to it), for unpolarised incident light.
+ */
+#ifndef ARCUS_RAINBOW_H
+#define ARCUS_RAINBOW_H
+
+#include "arcus_core.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Kernel features of rainbow jobs: bits 40-47 of arcus_features.  A sphere is traced in
+ * closed form and compiles neither. */
+#define ARCUS_FEATURE_RAINBOW_IMPLICIT (UINT64_C(1) << 40) /* the raindrop's implicit surface (eq. 4.21) */
+#define ARCUS_FEATURE_RAINBOW_MESH (UINT64_C(1) << 41)     /* triangle meshes through the shared BVH     */
+
+/* ---- refractive index --------------------------------------------------------- */
+typedef enum arcus_material {
+  ARCUS_MATERIAL_WATER = 0, /* IAPWS R9-97 at 1 atm; temperature_c applies            */
+  ARCUS_MATERIAL_ICE = 1,   /* ice Ih (data/rainbow/README.md gives the source)        */
+  ARCUS_MATERIAL_FIXED = 2  /* refractive_index as given, at every wavelength          */
+} arcus_material;
+
+/* The real refractive index of `material` relative to the surrounding air (taken as
+ * 1).  A wavelength or temperature outside the formulation's range is an error that
+ * names it. */
+ARCUS_API arcus_status arcus_refractive_index(int32_t material, double wavelength_nm, double temperature_c,
+                                              double* n);
+
+/* ---- particles ---------------------------------------------------------------- */
+typedef struct arcus_particle_s arcus_particle_t;
+
+typedef enum arcus_particle_kind {
+  ARCUS_PARTICLE_SPHERE = 0,
+  ARCUS_PARTICLE_RAINDROP = 1, /* thesis eq. 4.21 with Table 4.4 (1-6 mm)  */
+  ARCUS_PARTICLE_MESH = 2
+} arcus_particle_kind;
+
+/* A sphere of `radius` metres. */
+ARCUS_API arcus_status arcus_particle_create_sphere(arcus_context_t* ctx, double radius, arcus_particle_t** out);
+/* The thesis' falling raindrop of equivalent diameter 1-6 mm (`diameter` in metres):
+ * an ellipsoid deformed by eq. 4.21 with Table 4.4's a, b, k (interpolated linearly
+ * between the tabulated diameters).  Its symmetry axis is its own y (up); it is
+ * flattened underneath. */
+ARCUS_API arcus_status arcus_particle_create_raindrop(arcus_context_t* ctx, double diameter, arcus_particle_t** out);
+/* A closed triangle mesh read with OpenMesh (OBJ, PLY, OFF, STL), its coordinates
+ * multiplied by `scale` (to metres).  A mesh with an edge not shared by exactly two
+ * triangles is an error that says how many such edges it has. */
+ARCUS_API arcus_status arcus_particle_create_mesh(arcus_context_t* ctx, const char* path, double scale,
+                                                  arcus_particle_t** out);
+ARCUS_API arcus_status arcus_particle_retain(arcus_particle_t* particle);
+ARCUS_API arcus_status arcus_particle_release(arcus_particle_t* particle);
+
+typedef struct arcus_particle_info {
+  int32_t kind;             /* arcus_particle_kind                          */
+  double equivalent_radius; /* of the sphere of equal volume [m]            */
+  double volume;            /* [m³]                                         */
+  double bound_radius;      /* of a sphere about the origin holding it [m]  */
+  uint32_t triangles;       /* meshes                                       */
+} arcus_particle_info;
+ARCUS_API arcus_status arcus_particle_get_info(arcus_particle_t* particle, arcus_particle_info* info);
+
+/* ---- casting (thesis §4.4.2-4.4.3.1) ------------------------------------------ */
+typedef struct arcus_rainbow_params {
+  double wavelength_nm;    /* in air                                                    */
+  int32_t material;        /* arcus_material (water)                                    */
+  double temperature_c;    /* water's (20)                                              */
+  double refractive_index; /* ARCUS_MATERIAL_FIXED                                      */
+  uint32_t grid;           /* rays per side of the cast grid (1000)                     */
+  double alpha;            /* the grid's warp, eq. 4.27-4.28 (0.3; 1: uniform)           */
+  uint32_t max_bounces;    /* P: terms p = 0..P, p − 1 internal reflections (3; ≤ 15)   */
+  int32_t edge_rays;       /* 1: grid points just outside move onto the projected edge,
+                            *    found by bisection (§4.4.3.1); 0: the grid as it is   */
+  double rotation[9];      /* the particle's orientation: particle → world, row-major   */
+  double query_phi_deg;    /* finite: only patches reaching the half-plane of azimuth φ
+                            * are kept (a table p(θ) at that φ, much faster); NaN: all  */
+  arcus_progress_callback progress;
+  void* progress_user;
+} arcus_rainbow_params;
+
+/* wavelength 550 nm, water at 20 °C, grid 1000, α 0.3, P = 3, edge rays, identity
+ * rotation, every azimuth. */
+ARCUS_API arcus_status arcus_rainbow_params_init(arcus_rainbow_params* params);
+
+/* Casts the grid at the particle, traces every ray through p = 0..P and builds the
+ * collecting sphere's patches and their BVH: the job answers queries afterwards. */
+ARCUS_API arcus_status arcus_rainbow_cast(arcus_context_t* ctx, arcus_particle_t* particle,
+                                          const arcus_rainbow_params* params, arcus_job_t** job);
+
+typedef struct arcus_rainbow_stats {
+  double refractive_index;
+  uint64_t rays, hits, edge_rays;
+  uint64_t patches;            /* patches in the BVH                                   */
+  uint64_t patches_rejected;   /* spanning more than 60°: unresolved, left out          */
+  uint64_t patches_folded;     /* across a caustic (corners on two branches): left out  */
+  double intercepted;          /* geometric cross-section hit by the cast [m²]          */
+  double scattered[16];        /* power leaving in term p, as a fraction of intercepted */
+  double remaining;            /* still inside after P (the same fraction)              */
+  double cast_seconds, patch_seconds, bvh_seconds, query_seconds;
+} arcus_rainbow_stats;
+ARCUS_API arcus_status arcus_job_get_rainbow_stats(arcus_job_t* job, arcus_rainbow_stats* stats);
+
+/* The phase function at `count` directions (θ_i, φ_i in degrees; phi may be NULL for
+ * φ = query_phi_deg, or 0), per steradian, normalised so that the scattered light of
+ * p = 0..P integrates to 1 over the sphere:
+ *   parallel, perpendicular [count]  for unpolarised incident light (either may be NULL)
+ *   per_bounce [count × (P+1)]       unpolarised, term p alone (may be NULL)
+ * coherent = 1 adds the patches' phasors with their optical-path and focal-line phases
+ * (interference, eq. 4.31); 0 adds their intensities (geometric optics). */
+ARCUS_API arcus_status arcus_job_rainbow_phase(arcus_job_t* job, size_t count, const double* theta_deg,
+                                               const double* phi_deg, int32_t coherent, double* parallel,
+                                               double* perpendicular, double* per_bounce);
+/* The raw sums behind it, per direction and term p: the four phasors E_hθ, E_hφ, E_vθ,
+ * E_vφ (re, im) with their phases applied, summed over the patches holding the
+ * direction, unnormalised [count × (P+1) × 8]. */
+ARCUS_API arcus_status arcus_job_rainbow_phasors(arcus_job_t* job, size_t count, const double* theta_deg,
+                                                 const double* phi_deg, double* phasors);
+
+/* ---- Lorenz–Mie and the Debye series (spheres; host code, no context) ----------- */
+typedef struct arcus_mie_efficiencies {
+  double q_ext, q_sca, q_back, g;
+} arcus_mie_efficiencies;
+
+/* Lorenz–Mie for a sphere of `radius` metres at wavelength_nm with relative refractive
+ * index n_re + i·n_im: the amplitudes S1, S2 (re, im pairs) at each θ [2 × count each,
+ * either may be NULL], the phase function normalised to 1 over the sphere for
+ * parallel (|S2|²) and perpendicular (|S1|²) light [count each, may be NULL], and the
+ * efficiencies (may be NULL). */
+ARCUS_API arcus_status arcus_mie(double radius, double wavelength_nm, double n_re, double n_im, size_t count,
+                                 const double* theta_deg, double* s1, double* s2, double* parallel,
+                                 double* perpendicular, arcus_mie_efficiencies* efficiencies);
+/* The Debye-series terms p = 0..max_p of the same amplitudes [count × (max_p + 1) × 2
+ * each], and each term's phase function in Mie's normalisation (parallel and
+ * perpendicular, count × (max_p + 1)); p = 0 is external reflection without
+ * diffraction. */
+ARCUS_API arcus_status arcus_mie_debye(double radius, double wavelength_nm, double n_re, double n_im,
+                                       uint32_t max_p, size_t count, const double* theta_deg, double* s1,
+                                       double* s2, double* parallel, double* perpendicular);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* ARCUS_RAINBOW_H */

@@ -1,0 +1,83 @@
+/* What the rainbow engine's host (src/rainbow/) and kernels (kernels/rainbow/) share:
+ * the particle's shape, the cast's parameters and the layout of the traced rays and of
+ * the collecting sphere's patches.  Host and device both include this file.
+ *
+ * A traced ray leaves one record per term p = 0..P (thesis §4.4.3.1, Fig. 4.18): p = 0
+ * reflected outside, p ≥ 1 out after p refractions... precisely, entered and left with
+ * p − 1 internal reflections between.  A record is ARCUS_RAINBOW_RECORD reals:
+ *   [0..2]  the outgoing direction (world, unit)
+ *   [3..10] the phasors E_hθ, E_hφ, E_vθ, E_vφ (re, im): the field of the horizontally
+ *           (x) and vertically (y) polarised incident wave, on the outgoing (θ, φ)
+ *           frame, scaled so that |E|² is the ray's share of power (no spreading yet)
+ *   [11]    the optical path from the incident reference plane through the particle's
+ *           centre to the outgoing one (eq. 4.24-4.25, Fig. 4.14) [m]
+ *   [12]    1 when the term exists (it hit, and for p ≥ 1 was not totally reflected)
+ *   [13]    the sequence of faces it met (meshes; 0 otherwise): patches join only rays
+ *           of one sequence, one wavefront
+ *   [14]    the focal lines it passed (optics.h counts them)                            */
+#ifndef ARCUS_RAINBOW_DESC_H
+#define ARCUS_RAINBOW_DESC_H
+
+#ifndef __OPENCL_C_VERSION__
+#include <stdint.h>
+#include "common/real.h"
+#define RAINBOW_INT int32_t
+#else
+#define RAINBOW_INT int
+#endif
+
+#define ARCUS_RAINBOW_RECORD 15
+#define ARCUS_RAINBOW_MAX_BOUNCES 15
+
+#define ARCUS_RAINBOW_SHAPE_SPHERE 0
+#define ARCUS_RAINBOW_SHAPE_RAINDROP 1
+#define ARCUS_RAINBOW_SHAPE_MESH 2
+
+/* The cast, by value to the kernel.  rotation: the particle's frame → world (row-major);
+ * shape: sphere {radius}; raindrop {a, b, k, bound radius} (eq. 4.21); mesh {bound
+ * radius, the offset that steps a ray off the face it starts on}. */
+#define ARCUS_DECLARE_RAINBOW_CAST(NAME, R, I) \
+  typedef struct NAME {                        \
+    R rotation[9];                             \
+    R shape[4];                                \
+    R n;          /* particle / air            */ \
+    R plane;      /* the incident plane: z = −plane */ \
+    I kind;       /* ARCUS_RAINBOW_SHAPE_*     */ \
+    I bounces;    /* P                         */ \
+    I first, count;                            \
+  } NAME
+
+#ifdef __OPENCL_C_VERSION__
+ARCUS_DECLARE_RAINBOW_CAST(rainbow_cast_desc, REAL, int);
+#else
+ARCUS_DECLARE_RAINBOW_CAST(rainbow_cast_desc, double, int32_t);
+#endif
+
+/* A patch on the collecting sphere (thesis §4.4.3.2, Fig. 4.19): the four corner
+ * records of one term p at grid corners (i, j), (i+1, j), (i+1, j+1), (i, j+1), in that
+ * order.  The host has normalised the corners' amplitudes by eq. 4.29 and turned their
+ * phasors by their focal lines (eq. 4.31).  The BVH holds two chord triangles per patch:
+ * corners (0, 1, 2) and (0, 2, 3); triangle t belongs to patch t / 2. */
+typedef struct rainbow_patch {
+  RAINBOW_INT corner[4];
+  RAINBOW_INT p;
+} rainbow_patch;
+
+/* The query, by value: its directions' count and the wave number 2π/λ [1/m]. */
+#define ARCUS_DECLARE_RAINBOW_QUERY(NAME, R, I) \
+  typedef struct NAME {                         \
+    R wave_number;                              \
+    I count, terms, coherent;                   \
+  } NAME
+
+#ifdef __OPENCL_C_VERSION__
+ARCUS_DECLARE_RAINBOW_QUERY(rainbow_query_desc, REAL, int);
+#else
+ARCUS_DECLARE_RAINBOW_QUERY(rainbow_query_desc, double, int32_t);
+#endif
+
+/* Per direction and term: the 8 reals of the summed phasors, then the 4 intensities
+ * |E_hθ|², |E_hφ|², |E_vθ|², |E_vφ|² summed without phases. */
+#define ARCUS_RAINBOW_QUERY_REALS 12
+
+#endif /* ARCUS_RAINBOW_DESC_H */

@@ -1,0 +1,263 @@
+// The rainbow engine's C API (include/arcus/arcus_rainbow.h): particles, the cast, the
+// collecting sphere's queries, refractive indices and Lorenz–Mie with the Debye series.
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "arcus/arcus_rainbow.h"
+#include "core/call.h"
+#include "core/format.h"
+#include "rainbow/cast.h"
+#include "rainbow/mie.h"
+#include "rainbow/particle.h"
+#include "rainbow/refractive_index.h"
+
+using namespace arcus;
+using namespace arcus::api;
+
+struct arcus_particle_s : arcus::Handle {
+  arcus_particle_s(arcus_context_t* ctx, rainbow::Particle p)
+      : Handle(HandleType::Particle, ctx), particle(std::move(p)) {}
+  rainbow::Particle particle;
+};
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+template <class Make>
+arcus_status create_particle(arcus_context_t* ctx, arcus_particle_t** out, Make&& make) {
+  return simple<arcus_context_s>(ctx, HandleType::Context, "ctx", [&](arcus_context_s*) {
+    require_pointer(out, "out");
+    *out = nullptr;
+    auto particle = std::make_unique<arcus_particle_s>(ctx, make());
+    arcus::retain_context(ctx);  // the particle's reference
+    *out = particle.release();
+  });
+}
+
+double index_of(int32_t material, double wavelength_nm, double temperature_c, double fixed) {
+  switch (material) {
+    case ARCUS_MATERIAL_WATER: return rainbow::water_index(wavelength_nm, temperature_c);
+    case ARCUS_MATERIAL_ICE: return rainbow::ice_index(wavelength_nm);
+    case ARCUS_MATERIAL_FIXED:
+      require(std::isfinite(fixed) && fixed > 1, "refractive_index must be finite and above 1, got " + number(fixed));
+      return fixed;
+    default: fail(ARCUS_ERROR_INVALID_ARGUMENT, "material must be water (0), ice (1) or fixed (2), got " +
+                                                    std::to_string(material));
+  }
+  return 0;
+}
+
+template <class Body>
+arcus_status on_rainbow_job(arcus_job_t* job, Body&& body) {
+  return on_job<rainbow::RainbowJob>(job, "a rainbow cast", body);
+}
+
+// θ and φ of a query: φ defaults to the cast's query_phi_deg (0 when it kept every azimuth).
+std::vector<double> query_directions(const rainbow::RainbowJob& j, size_t count, const double* theta,
+                                     const double* phi) {
+  require(count == 0 || theta, "theta_deg is NULL");
+  require(count <= (size_t(1) << 26), "count " + std::to_string(count) + " is more than 2^26 directions a call");
+  const double phi0 = std::isnan(j.query_phi_deg) ? 0.0 : j.query_phi_deg;
+  std::vector<double> t(theta, theta + count), f(count, phi0);
+  if (phi) f.assign(phi, phi + count);
+  return rainbow::directions(t, f);
+}
+
+// x and m of a sphere, and the cosines of its angles.
+struct MieInput {
+  double x;
+  std::complex<double> m;
+  std::vector<double> mu;
+};
+
+MieInput mie_input(double radius, double wavelength_nm, double n_re, double n_im, size_t count,
+                   const double* theta_deg) {
+  require(std::isfinite(radius) && radius > 0, "radius must be positive and finite, got " + number(radius));
+  require(std::isfinite(wavelength_nm) && wavelength_nm > 0,
+          "wavelength_nm must be positive and finite, got " + number(wavelength_nm));
+  require(count == 0 || theta_deg, "theta_deg is NULL");
+  MieInput in{2 * kPi * radius / (wavelength_nm * 1e-9), {n_re, n_im}, std::vector<double>(count)};
+  for (size_t i = 0; i < count; ++i) {
+    require(std::isfinite(theta_deg[i]) && theta_deg[i] >= 0 && theta_deg[i] <= 180,
+            "theta[" + std::to_string(i) + "] must lie in [0, 180] degrees, got " + number(theta_deg[i]));
+    in.mu[i] = std::cos(theta_deg[i] * kPi / 180);
+  }
+  return in;
+}
+
+// (re, im) pairs of `from` at out[stride·i + offset], i over the values.
+void copy_complex(const std::vector<std::complex<double>>& from, double* out, size_t stride, size_t offset) {
+  if (!out) return;
+  for (size_t i = 0; i < from.size(); ++i) {
+    out[2 * (stride * i + offset)] = from[i].real();
+    out[2 * (stride * i + offset) + 1] = from[i].imag();
+  }
+}
+
+}  // namespace
+
+extern "C" {
+
+arcus_status arcus_refractive_index(int32_t material, double wavelength_nm, double temperature_c, double* n) {
+  return without_context([&] {
+    require_pointer(n, "n");
+    *n = index_of(material, wavelength_nm, temperature_c, std::numeric_limits<double>::quiet_NaN());
+  });
+}
+
+arcus_status arcus_particle_create_sphere(arcus_context_t* ctx, double radius, arcus_particle_t** out) {
+  return create_particle(ctx, out, [&] { return rainbow::sphere(radius); });
+}
+
+arcus_status arcus_particle_create_raindrop(arcus_context_t* ctx, double diameter, arcus_particle_t** out) {
+  return create_particle(ctx, out, [&] { return rainbow::raindrop(diameter); });
+}
+
+arcus_status arcus_particle_create_mesh(arcus_context_t* ctx, const char* path, double scale,
+                                        arcus_particle_t** out) {
+  return create_particle(ctx, out, [&] {
+    require_pointer(path, "path");
+    return rainbow::mesh(path, scale);
+  });
+}
+
+arcus_status arcus_particle_retain(arcus_particle_t* particle) {
+  return retain(particle, HandleType::Particle, "particle");
+}
+arcus_status arcus_particle_release(arcus_particle_t* particle) {
+  return release(particle, HandleType::Particle, "particle");
+}
+
+arcus_status arcus_particle_get_info(arcus_particle_t* particle, arcus_particle_info* info) {
+  return simple<arcus_particle_s>(particle, HandleType::Particle, "particle", [&](arcus_particle_s* p) {
+    require_pointer(info, "info");
+    *info = arcus_particle_info{};
+    info->kind = p->particle.kind;
+    info->equivalent_radius = rainbow::equivalent_radius(p->particle);
+    info->volume = p->particle.volume;
+    info->bound_radius = p->particle.bound;
+    info->triangles = static_cast<uint32_t>(p->particle.mesh.triangle_count());
+  });
+}
+
+arcus_status arcus_rainbow_params_init(arcus_rainbow_params* params) {
+  return without_context([&] {
+    require_pointer(params, "params");
+    *params = arcus_rainbow_params{};
+    params->wavelength_nm = 550;
+    params->material = ARCUS_MATERIAL_WATER;
+    params->temperature_c = 20;
+    params->refractive_index = std::numeric_limits<double>::quiet_NaN();
+    params->grid = 1000;
+    params->alpha = 0.3;
+    params->max_bounces = 3;
+    params->edge_rays = 1;
+    for (int i = 0; i < 9; ++i) params->rotation[i] = i % 4 == 0 ? 1 : 0;
+    params->query_phi_deg = std::numeric_limits<double>::quiet_NaN();
+  });
+}
+
+arcus_status arcus_rainbow_cast(arcus_context_t* ctx, arcus_particle_t* particle, const arcus_rainbow_params* params,
+                                arcus_job_t** job) {
+  return on<arcus_context_s>(ctx, HandleType::Context, "ctx", [&](arcus_context_s*, std::string* message) {
+    require_pointer(job, "job");
+    *job = nullptr;
+    require_pointer(params, "params");
+    auto* p = object_of<arcus_particle_s>(ctx, particle, HandleType::Particle, "particle");
+    rainbow::CastParams cp;
+    cp.wavelength_nm = params->wavelength_nm;
+    cp.n = index_of(params->material, params->wavelength_nm, params->temperature_c, params->refractive_index);
+    require(params->grid <= 8192, "grid must be 4 to 8192 rays per side, got " + std::to_string(params->grid));
+    require(params->max_bounces <= ARCUS_RAINBOW_MAX_BOUNCES,
+            "max_bounces must be 0 to " + std::to_string(ARCUS_RAINBOW_MAX_BOUNCES) + ", got " +
+                std::to_string(params->max_bounces));
+    cp.grid = static_cast<int>(params->grid);
+    cp.alpha = params->alpha;
+    cp.bounces = static_cast<int>(params->max_bounces);
+    cp.edge_rays = params->edge_rays != 0;
+    for (int i = 0; i < 9; ++i) cp.rotation[i] = params->rotation[i];
+    cp.query_phi_deg = params->query_phi_deg;
+    bool cancelled = false;
+    auto j = rainbow::cast(ctx, p->particle, cp, params->progress, params->progress_user, &cancelled);
+    arcus::retain_context(ctx);  // the job's reference
+    *job = j.release();
+    if (!cancelled) return ARCUS_SUCCESS;
+    *message = "the progress callback cancelled the cast: the job holds no patches";
+    return ARCUS_ERROR_CANCELLED;
+  });
+}
+
+arcus_status arcus_job_get_rainbow_stats(arcus_job_t* job, arcus_rainbow_stats* stats) {
+  return on_rainbow_job(job, [&](rainbow::RainbowJob* j) {
+    require_pointer(stats, "stats");
+    *stats = j->info;
+  });
+}
+
+arcus_status arcus_job_rainbow_phase(arcus_job_t* job, size_t count, const double* theta_deg, const double* phi_deg,
+                                     int32_t coherent, double* parallel, double* perpendicular, double* per_bounce) {
+  return on_rainbow_job(job, [&](rainbow::RainbowJob* j) {
+    const std::vector<double> dirs = query_directions(*j, count, theta_deg, phi_deg);
+    const rainbow::Phase ph = rainbow::phase(*j, rainbow::query(j->owner(), *j, dirs), coherent != 0);
+    copy_out(ph.parallel, parallel);
+    copy_out(ph.perpendicular, perpendicular);
+    copy_out(ph.per_bounce, per_bounce);
+  });
+}
+
+arcus_status arcus_job_rainbow_phasors(arcus_job_t* job, size_t count, const double* theta_deg, const double* phi_deg,
+                                       double* phasors) {
+  return on_rainbow_job(job, [&](rainbow::RainbowJob* j) {
+    require_pointer(phasors, "phasors");
+    const std::vector<double> dirs = query_directions(*j, count, theta_deg, phi_deg);
+    const std::vector<double> sums = rainbow::query(j->owner(), *j, dirs);
+    const size_t per = ARCUS_RAINBOW_QUERY_REALS;
+    for (size_t i = 0; i < count * size_t(j->terms); ++i)
+      for (int e = 0; e < 8; ++e) phasors[8 * i + e] = sums[per * i + e];
+  });
+}
+
+arcus_status arcus_mie(double radius, double wavelength_nm, double n_re, double n_im, size_t count,
+                       const double* theta_deg, double* s1, double* s2, double* parallel, double* perpendicular,
+                       arcus_mie_efficiencies* efficiencies) {
+  return without_context([&] {
+    const MieInput in = mie_input(radius, wavelength_nm, n_re, n_im, count, theta_deg);
+    const rainbow::mie::Result r = rainbow::mie::scatter(in.x, in.m, in.mu);
+    copy_complex(r.s1, s1, 1, 0);
+    copy_complex(r.s2, s2, 1, 0);
+    const rainbow::mie::Polarised ph = rainbow::mie::polarised_phase_function(r, in.x);
+    copy_out(ph.parallel, parallel);
+    copy_out(ph.perpendicular, perpendicular);
+    if (efficiencies) *efficiencies = arcus_mie_efficiencies{r.q_ext, r.q_sca, r.q_back, r.g};
+  });
+}
+
+arcus_status arcus_mie_debye(double radius, double wavelength_nm, double n_re, double n_im, uint32_t max_p,
+                             size_t count, const double* theta_deg, double* s1, double* s2, double* parallel,
+                             double* perpendicular) {
+  return without_context([&] {
+    require(max_p <= 1000, "max_p must be 0 to 1000, got " + std::to_string(max_p));
+    const MieInput in = mie_input(radius, wavelength_nm, n_re, n_im, count, theta_deg);
+    const rainbow::mie::Debye d = rainbow::mie::debye(in.x, in.m, in.mu, static_cast<int>(max_p));
+    const double q_sca = rainbow::mie::scatter(in.x, in.m, {}).q_sca;  // the whole sphere's scale
+    const size_t terms = size_t(max_p) + 1;
+    for (size_t p = 0; p < terms; ++p) {
+      // p = 0 without diffraction: what a ray tracer's external reflection is
+      const rainbow::mie::Amplitudes& a = p == 0 ? d.reflection : d.terms[p];
+      copy_complex(a.s1, s1, terms, p);
+      copy_complex(a.s2, s2, terms, p);
+      const rainbow::mie::Polarised ph = rainbow::mie::polarised_phase_function(a, in.x, q_sca);
+      for (size_t i = 0; i < count; ++i) {
+        if (parallel) parallel[terms * i + p] = ph.parallel[i];
+        if (perpendicular) perpendicular[terms * i + p] = ph.perpendicular[i];
+      }
+    }
+  });
+}
+
+}  // extern "C"

@@ -1,0 +1,31 @@
+// The particles whose phase functions the rainbow engine computes (thesis §4.4.1): a
+// sphere, the thesis' falling raindrop (eq. 4.21, Table 4.4) and any closed triangle
+// mesh (ice crystals, measured shapes), each in its own frame about the origin.
+#pragma once
+
+#include <string>
+
+#include "geometry/mesh.h"
+#include "rainbow/rainbow_desc.h"
+
+namespace arcus::rainbow {
+
+struct Particle {
+  int kind = ARCUS_RAINBOW_SHAPE_SPHERE;
+  double radius = 0;        // sphere
+  double a = 0, b = 0, k = 0;  // raindrop: eq. 4.21's half-width, half-height, deformation
+  geometry::Mesh mesh;      // mesh, in metres
+  double bound = 0;         // radius of a sphere about the origin holding the particle
+  double volume = 0;
+};
+
+// radius > 0 and finite.
+Particle sphere(double radius);
+// Equivalent-volume diameter 1-6 mm (in metres); Table 4.4 interpolated linearly.
+Particle raindrop(double diameter);
+// A mesh file scaled by `scale`; it must be closed: every edge in exactly two triangles.
+Particle mesh(const std::string& path, double scale);
+
+double equivalent_radius(const Particle& p);
+
+}  // namespace arcus::rainbow
