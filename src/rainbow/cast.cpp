@@ -111,6 +111,7 @@ struct Records {
 };
 
 double ray_power(const double* rec) {
+  if (rec[12] != 1) return 0;
   double s = 0;
   for (int c = 3; c < 11; ++c) s += rec[c] * rec[c];
   return s / 2;  // both polarisations, each incident with power 1
@@ -350,9 +351,13 @@ std::unique_ptr<RainbowJob> cast(arcus_context_t* ctx, const Particle& particle,
           q[k] = rec.at(p, c[k]);
           ok = ok && q[k][12] == 1 && q[k][13] == q[0][13];
         }
-        if (!ok) continue;
         const double a = area[size_t(j) * cells + i];
-        power += a * (ray_power(q[0]) + ray_power(q[1]) + ray_power(q[2]) + ray_power(q[3])) / 4;
+        // the power leaving in term p through this cell: a record that does not exist
+        // (a missed or totally reflected ray) carries none, so the books balance cell
+        // by cell with what remains inside
+        if (left[c[0]] >= 0 && left[c[1]] >= 0 && left[c[2]] >= 0 && left[c[3]] >= 0)
+          power += a * (ray_power(q[0]) + ray_power(q[1]) + ray_power(q[2]) + ray_power(q[3])) / 4;
+        if (!ok) continue;
         // A patch whose corners passed different numbers of focal lines straddles a
         // caustic: its corners belong to two branches of the wavefront (the two rays of
         // a rainbow angle), which interpolation must not mix (§4.4.3: adjacency is what
