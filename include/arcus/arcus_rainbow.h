@@ -58,9 +58,16 @@ ARCUS_API arcus_status arcus_particle_create_sphere(arcus_context_t* ctx, double
 ARCUS_API arcus_status arcus_particle_create_raindrop(arcus_context_t* ctx, double diameter, arcus_particle_t** out);
 /* A closed triangle mesh read with OpenMesh (OBJ, PLY, OFF, STL), its coordinates
  * multiplied by `scale` (to metres).  A mesh with an edge not shared by exactly two
- * triangles is an error that says how many such edges it has. */
+ * triangles is an error that says how many such edges it has.
+ *   smooth = 1: the triangles approximate a smooth surface (a measured drop): normals
+ *     and their curvature are interpolated from the vertices, and the phase function is
+ *     the surface's;
+ *   smooth = 0: the faces are flat (a crystal).  In one orientation each sequence of
+ *     faces sends its light into a single direction, a peak no patch can hold: the
+ *     cast's stats give each term's power, the phase function only what falls between
+ *     (orientation averaging, which spreads the peaks, is the halo issue's). */
 ARCUS_API arcus_status arcus_particle_create_mesh(arcus_context_t* ctx, const char* path, double scale,
-                                                  arcus_particle_t** out);
+                                                  int32_t smooth, arcus_particle_t** out);
 ARCUS_API arcus_status arcus_particle_retain(arcus_particle_t* particle);
 ARCUS_API arcus_status arcus_particle_release(arcus_particle_t* particle);
 
@@ -136,9 +143,9 @@ typedef struct arcus_mie_efficiencies {
 
 /* Lorenz–Mie for a sphere of `radius` metres at wavelength_nm with relative refractive
  * index n_re + i·n_im: the amplitudes S1, S2 (re, im pairs) at each θ [2 × count each,
- * either may be NULL], the phase function normalised to 1 over the sphere for
- * parallel (|S2|²) and perpendicular (|S1|²) light [count each, may be NULL], and the
- * efficiencies (may be NULL). */
+ * either may be NULL], the phase function's parallel (|S2|²) and perpendicular (|S1|²)
+ * halves for unpolarised light, whose sum integrates to 1 over the sphere [count each,
+ * may be NULL], and the efficiencies (may be NULL). */
 ARCUS_API arcus_status arcus_mie(double radius, double wavelength_nm, double n_re, double n_im, size_t count,
                                  const double* theta_deg, double* s1, double* s2, double* parallel,
                                  double* perpendicular, arcus_mie_efficiencies* efficiencies);

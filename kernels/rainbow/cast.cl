@@ -3,6 +3,7 @@
  * and branchy, and the cast is a small part of a phase function's time (the queries
  * and the BVH build dominate: bench/README.md).
  *
+ * nodes, tris, order, normals   a mesh particle (rb_mesh in optics.h); null otherwise
  * points   the rays' (u, v) on the incident plane, 2 per ray
  * records  (P + 1) × rays records: term p of ray r at (p·rays + r)·ARCUS_RAINBOW_RECORD
  * left     per ray: the power still inside after P, −1 for a ray that missed
@@ -10,10 +11,15 @@
  * Host prepends: common/real.h, bvh/bvh_desc.h, bvh/traverse.h, rainbow/rainbow_desc.h,
  * rainbow/optics.h. */
 __kernel void arcus_rainbow_cast(__global const bvh_node* nodes, __global const REAL* tris, __global const int* order,
-                                 __global const REAL* points, const rainbow_cast_desc d, const int rays,
-                                 __global REAL* records, __global REAL* left) {
+                                 __global const REAL* normals, __global const REAL* points, const rainbow_cast_desc d,
+                                 const int rays, __global REAL* records, __global REAL* left) {
   const int r = d.first + (int)get_global_id(0);
   if (r >= d.first + d.count) return;
-  left[r] = rb_trace(&d, nodes, tris, order, points[2 * r], points[2 * r + 1],
-                     records + (size_t)r * ARCUS_RAINBOW_RECORD, (size_t)rays * ARCUS_RAINBOW_RECORD);
+  rb_mesh m;
+  m.nodes = nodes;
+  m.tris = tris;
+  m.order = order;
+  m.normals = normals;
+  left[r] = rb_trace(&d, &m, points[2 * r], points[2 * r + 1], records + (size_t)r * ARCUS_RAINBOW_RECORD,
+                     (size_t)rays * ARCUS_RAINBOW_RECORD);
 }

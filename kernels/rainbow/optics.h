@@ -152,6 +152,34 @@ ARCUS_INLINE int rb_interface(const REAL* k, const REAL* m, REAL n1, REAL n2, co
 
 /* ---- surfaces -------------------------------------------------------------------- */
 
+/* A mesh particle on the device: the shared BVH's nodes, triangles (9 per leaf slot)
+ * and slot → triangle order, and per slot its vertices' normals (9 reals) for a mesh
+ * that approximates a smooth surface, or null for flat faces.  Null for other shapes. */
+typedef struct rb_mesh {
+  ARCUS_GLOBAL const bvh_node* nodes;
+  ARCUS_GLOBAL const REAL* tris;
+  ARCUS_GLOBAL const int* order;
+  ARCUS_GLOBAL const REAL* normals;
+} rb_mesh;
+
+/* The barycentric weights (u of v1, v of v2) of the point x in the plane of the
+ * triangle v0, v1, v2. */
+ARCUS_INLINE void rb_barycentric(ARCUS_GLOBAL const REAL* tri, const REAL* x, REAL* u, REAL* v) {
+  const REAL e1[3] = {tri[3] - tri[0], tri[4] - tri[1], tri[5] - tri[2]};
+  const REAL e2[3] = {tri[6] - tri[0], tri[7] - tri[1], tri[8] - tri[2]};
+  const REAL w[3] = {x[0] - tri[0], x[1] - tri[1], x[2] - tri[2]};
+  const REAL g11 = rb_dot(e1, e1), g12 = rb_dot(e1, e2), g22 = rb_dot(e2, e2);
+  const REAL b1 = rb_dot(e1, w), b2 = rb_dot(e2, w), det = g11 * g22 - g12 * g12;
+  *u = (g22 * b1 - g12 * b2) / det;
+  *v = (g11 * b2 - g12 * b1) / det;
+}
+
+/* The smooth mesh's normal field at barycentric (u, v) of slot s, unnormalised. */
+ARCUS_INLINE void rb_mesh_normal(const rb_mesh* m, int s, REAL u, REAL v, REAL* n) {
+  ARCUS_GLOBAL const REAL* nv = m->normals + 9 * (size_t)s;
+  for (int a = 0; a < 3; ++a) n[a] = (RC(1) - u - v) * nv[a] + u * nv[3 + a] + v * nv[6 + a];
+}
+
 /* The raindrop of thesis eq. 4.21 in its own frame (y up; the equation's "= 0" is the
  * surface F = 0 of F = (x² + z²)/a² (1 − k y/b) + y²/b² − 1, negative inside). */
 ARCUS_INLINE REAL rb_raindrop_f(const REAL* s, const REAL* q) {
@@ -224,14 +252,11 @@ ARCUS_INLINE REAL rb_cubic_crossing(const REAL* c, REAL lo, REAL hi, int rising)
 
 /* The nearest surface crossing of o + t·k (world, k unit) beyond t_min, entering
  * (inside = 0) or leaving (inside = 1): t and the outward unit normal, or 0 on a miss.
- * *face: the mesh triangle (−1 otherwise). */
-ARCUS_INLINE int rb_hit(const rainbow_cast_desc* d, ARCUS_GLOBAL const bvh_node* nodes, ARCUS_GLOBAL const REAL* tris,
-                        ARCUS_GLOBAL const int* order, const REAL* o, const REAL* k, int inside, REAL* t_out, REAL* n_out,
-                        int* face) {
-  (void)nodes; /* meshes only */
-  (void)tris;
-  (void)order;
-  *face = -1;
+ * *slot: the mesh's leaf slot hit (−1 for other shapes). */
+ARCUS_INLINE int rb_hit(const rainbow_cast_desc* d, const rb_mesh* m, const REAL* o, const REAL* k, int inside,
+                        REAL* t_out, REAL* n_out, int* slot) {
+  (void)m; /* meshes only */
+  *slot = -1;
   if (d->kind == ARCUS_RAINBOW_SHAPE_SPHERE) {
     const REAL r = d->shape[0];
     const REAL b = rb_dot(o, k), c = rb_dot(o, o) - r * r;
@@ -289,10 +314,10 @@ ARCUS_INLINE int rb_hit(const rainbow_cast_desc* d, ARCUS_GLOBAL const bvh_node*
     const REAL start[3] = {o[0] + off * k[0], o[1] + off * k[1], o[2] + off * k[2]};
     REAL t, u, v;
     int tests = 0;
-    const int slot = bvh_segment_closest(nodes, tris, start[0], start[1], start[2], k[0], k[1], k[2],
-                                         RC(4) * d->shape[0], &t, &u, &v, &tests);
-    if (slot < 0) return 0;
-    ARCUS_GLOBAL const REAL* tri = tris + 9 * (size_t)slot;
+    const int s = bvh_segment_closest(m->nodes, m->tris, start[0], start[1], start[2], k[0], k[1], k[2],
+                                      RC(4) * d->shape[0], &t, &u, &v, &tests);
+    if (s < 0) return 0;
+    ARCUS_GLOBAL const REAL* tri = m->tris + 9 * (size_t)s;
     const REAL e1[3] = {tri[3] - tri[0], tri[4] - tri[1], tri[5] - tri[2]};
     const REAL e2[3] = {tri[6] - tri[0], tri[7] - tri[1], tri[8] - tri[2]};
     rb_cross(e1, e2, n_out);
@@ -301,8 +326,21 @@ ARCUS_INLINE int rb_hit(const rainbow_cast_desc* d, ARCUS_GLOBAL const bvh_node*
     const REAL side = rb_dot(n_out, k);
     if ((inside && side < 0) || (!inside && side > 0))
       for (int a = 0; a < 3; ++a) n_out[a] = -n_out[a];
+    if (m->normals) {
+      /* a smooth surface: the vertex normals interpolated (Phong), turned to the face's
+       * outward side; where the ray would not cross the interpolated surface the way
+       * it crosses the face (near a silhouette), the face's normal stays */
+      REAL ns[3];
+      rb_mesh_normal(m, s, u, v, ns);
+      rb_normalize(ns);
+      if (rb_dot(ns, n_out) < 0)
+        for (int a = 0; a < 3; ++a) ns[a] = -ns[a];
+      const REAL cross_s = rb_dot(ns, k);
+      if (inside ? cross_s > 0 : cross_s < 0)
+        for (int a = 0; a < 3; ++a) n_out[a] = ns[a];
+    }
     *t_out = t + off;
-    *face = order[slot];
+    *slot = s;
     return 1;
   }
 #endif
@@ -348,9 +386,12 @@ ARCUS_INLINE int rb_focal_count(const rb_diff* g, const REAL* k, REAL s_max) {
 }
 
 /* The differential of the unit normal along the surface, dN = (I − N Nᵀ) H dP / |∇F|
- * (H the Hessian of the surface's implicit function; a mesh's flat face: 0). */
-ARCUS_INLINE void rb_normal_differential(const rainbow_cast_desc* d, const REAL* pos, const REAL* nrm, const REAL* dp,
-                                         REAL* dn) {
+ * (H the Hessian of the surface's implicit function); on a smooth mesh the derivative
+ * of the interpolated normal across the triangle `slot`; a flat face: 0. */
+ARCUS_INLINE void rb_normal_differential(const rainbow_cast_desc* d, const rb_mesh* m, int slot, const REAL* pos,
+                                         const REAL* nrm, const REAL* dp, REAL* dn) {
+  (void)m; /* smooth meshes only */
+  (void)slot;
   if (d->kind == ARCUS_RAINBOW_SHAPE_SPHERE) {
     const REAL r = d->shape[0];
     const REAL along = rb_dot(dp, nrm);
@@ -380,6 +421,28 @@ ARCUS_INLINE void rb_normal_differential(const rainbow_cast_desc* d, const REAL*
   }
 #endif
   dn[0] = dn[1] = dn[2] = RC(0);
+#ifdef ARCUS_USE_RAINBOW_MESH
+  if (d->kind == ARCUS_RAINBOW_SHAPE_MESH && m->normals && slot >= 0) {
+    ARCUS_GLOBAL const REAL* tri = m->tris + 9 * (size_t)slot;
+    REAL u, v, du, dv;
+    rb_barycentric(tri, pos, &u, &v);
+    REAL n[3];
+    rb_mesh_normal(m, slot, u, v, n);
+    const REAL len = sqrt(rb_dot(n, n));
+    const REAL sign = rb_dot(n, nrm) < 0 ? -RC(1) : RC(1);
+    /* the face's own normal was kept (no interpolated crossing): flat there */
+    REAL gap = 0;
+    for (int a = 0; a < 3; ++a) gap += fabs(sign * n[a] / len - nrm[a]);
+    if (gap > RC(1e-9)) return;
+    const REAL moved[3] = {tri[0] + dp[0], tri[1] + dp[1], tri[2] + dp[2]};
+    rb_barycentric(tri, moved, &du, &dv); /* linear: the weights' change along dP */
+    ARCUS_GLOBAL const REAL* nv = m->normals + 9 * (size_t)slot;
+    REAL dm[3];
+    for (int a = 0; a < 3; ++a) dm[a] = du * (nv[3 + a] - nv[a]) + dv * (nv[6 + a] - nv[a]);
+    const REAL along = rb_dot(dm, nrm) * sign;
+    for (int a = 0; a < 3; ++a) dn[a] = sign * (dm[a] - along * sign * nrm[a]) / len;
+  }
+#endif
 }
 
 /* Moves the differentials from the ray's start to its hit at distance t on the surface
@@ -400,13 +463,13 @@ ARCUS_INLINE int rb_diff_propagate(rb_diff* g, const REAL* k, REAL t, const REAL
 /* The direction differentials after reflection (reflect = 1) or refraction at the
  * interface of rb_interface: k incident, the outward normal nrm, side = +1 when the ray
  * arrives from outside (−1 from inside), eta = n1/n2, cos θ_t. */
-ARCUS_INLINE void rb_diff_turn(const rainbow_cast_desc* d, rb_diff* g, const REAL* pos, const REAL* k, const REAL* nrm,
-                               REAL side, REAL eta, REAL cos_t, int reflect) {
+ARCUS_INLINE void rb_diff_turn(const rainbow_cast_desc* d, const rb_mesh* mesh, int slot, rb_diff* g, const REAL* pos,
+                               const REAL* k, const REAL* nrm, REAL side, REAL eta, REAL cos_t, int reflect) {
   const REAL m[3] = {side * nrm[0], side * nrm[1], side * nrm[2]}; /* toward the incident side */
   const REAL c = -rb_dot(k, m);
   for (int i = 0; i < 2; ++i) {
     REAL dm[3];
-    rb_normal_differential(d, pos, nrm, g->dp[i], dm);
+    rb_normal_differential(d, mesh, slot, pos, nrm, g->dp[i], dm);
     for (int a = 0; a < 3; ++a) dm[a] *= side;
     const REAL dc = -(rb_dot(g->dk[i], m) + rb_dot(k, dm));
     if (reflect) {
@@ -447,8 +510,11 @@ ARCUS_INLINE void rb_emit_none(ARCUS_GLOBAL REAL* rec) {
   for (int c = 0; c < ARCUS_RAINBOW_RECORD; ++c) rec[c] = RC(0);
 }
 
-/* Sequence codes of meshes: the faces met, folded into an integer below 2^50 that a
- * double holds exactly. */
+/* Sequence codes of flat-faced meshes: the faces met, folded into an integer below 2^50
+ * that a double holds exactly.  A smooth mesh's triangles are one surface, as a
+ * sphere's points are: no code. */
+ARCUS_INLINE int rb_face(const rb_mesh* m, int slot) { return slot < 0 || m->normals ? -1 : m->order[slot]; }
+
 ARCUS_INLINE REAL rb_sequence(REAL code, int face) {
   if (face < 0) return code;
   const REAL m = RC(1125899906842597); /* a prime below 2^50 */
@@ -459,20 +525,20 @@ ARCUS_INLINE REAL rb_sequence(REAL code, int face) {
 /* Traces the ray entering along +z through (u, v) on the incident plane and writes its
  * P + 1 records, record p at records + p·stride.  Returns the power (both
  * polarisations summed, each starting at 1) still inside after P, or −1 on a miss. */
-ARCUS_INLINE REAL rb_trace(const rainbow_cast_desc* d, ARCUS_GLOBAL const bvh_node* nodes, ARCUS_GLOBAL const REAL* tris,
-                           ARCUS_GLOBAL const int* order, REAL u, REAL v, ARCUS_GLOBAL REAL* records, size_t stride) {
+ARCUS_INLINE REAL rb_trace(const rainbow_cast_desc* d, const rb_mesh* m, REAL u, REAL v, ARCUS_GLOBAL REAL* records,
+                           size_t stride) {
   const REAL o[3] = {u, v, -d->plane};
   const REAL k0[3] = {RC(0), RC(0), RC(1)};
   REAL t, nrm[3];
-  int face;
-  if (!rb_hit(d, nodes, tris, order, o, k0, 0, &t, nrm, &face)) {
+  int slot;
+  if (!rb_hit(d, m, o, k0, 0, &t, nrm, &slot)) {
     for (int p = 0; p <= d->bounces; ++p) rb_emit_none(records + (size_t)p * stride);
     return -RC(1);
   }
   REAL pos[3] = {o[0], o[1], o[2] + t};
   /* from the incident reference plane through the centre (z = 0) to the entry point */
   REAL path = pos[2];
-  REAL sequence = rb_sequence(RC(0), face);
+  REAL sequence = rb_sequence(RC(0), rb_face(m, slot));
   rb_field f;
   for (int pol = 0; pol < 2; ++pol)
     for (int a = 0; a < 3; ++a) f.e[pol][a] = rb_c(pol == a ? RC(1) : RC(0), RC(0));
@@ -489,18 +555,18 @@ ARCUS_INLINE REAL rb_trace(const rainbow_cast_desc* d, ARCUS_GLOBAL const bvh_no
   rb_fresnel fres;
   const int in = rb_interface(k, nrm, RC(1), d->n, &f, kr, &fr, kt, &ft, &fres);
   rb_diff gr = g;
-  rb_diff_turn(d, &gr, pos, k, nrm, RC(1), RC(1) / d->n, fres.cos_t, 1);
+  rb_diff_turn(d, m, slot, &gr, pos, k, nrm, RC(1), RC(1) / d->n, fres.cos_t, 1);
   rb_emit(records, kr, &fr, path, pos, sequence, focal + rb_focal_count(&gr, kr, (REAL)INFINITY));
   if (!in) { /* cannot happen from air, kept for n < 1 */
     for (int p = 1; p <= d->bounces; ++p) rb_emit_none(records + (size_t)p * stride);
     return RC(0);
   }
-  rb_diff_turn(d, &g, pos, k, nrm, RC(1), RC(1) / d->n, fres.cos_t, 0);
+  rb_diff_turn(d, m, slot, &g, pos, k, nrm, RC(1), RC(1) / d->n, fres.cos_t, 0);
   for (int a = 0; a < 3; ++a) k[a] = kt[a];
   f = ft;
   for (int p = 1; p <= d->bounces; ++p) {
     ARCUS_GLOBAL REAL* rec = records + (size_t)p * stride;
-    if (!rb_hit(d, nodes, tris, order, pos, k, 1, &t, nrm, &face)) {
+    if (!rb_hit(d, m, pos, k, 1, &t, nrm, &slot)) {
       /* lost inside (a rounding escape at a grazing edge): nothing leaves later */
       for (int q = p; q <= d->bounces; ++q) rb_emit_none(records + (size_t)q * stride);
       return RC(0);
@@ -508,17 +574,17 @@ ARCUS_INLINE REAL rb_trace(const rainbow_cast_desc* d, ARCUS_GLOBAL const bvh_no
     focal += rb_diff_propagate(&g, k, t, nrm);
     for (int a = 0; a < 3; ++a) pos[a] += t * k[a];
     path += d->n * t;
-    sequence = rb_sequence(sequence, face);
+    sequence = rb_sequence(sequence, rb_face(m, slot));
     const REAL inward[3] = {-nrm[0], -nrm[1], -nrm[2]};
     const int out = rb_interface(k, inward, d->n, RC(1), &f, kr, &fr, kt, &ft, &fres);
     if (out) {
       rb_diff gt = g;
-      rb_diff_turn(d, &gt, pos, k, nrm, -RC(1), d->n, fres.cos_t, 0);
+      rb_diff_turn(d, m, slot, &gt, pos, k, nrm, -RC(1), d->n, fres.cos_t, 0);
       rb_emit(rec, kt, &ft, path, pos, sequence, focal + rb_focal_count(&gt, kt, (REAL)INFINITY));
     } else {
       rb_emit_none(rec);
     }
-    rb_diff_turn(d, &g, pos, k, nrm, -RC(1), d->n, fres.cos_t, 1);
+    rb_diff_turn(d, m, slot, &g, pos, k, nrm, -RC(1), d->n, fres.cos_t, 1);
     for (int a = 0; a < 3; ++a) k[a] = kr[a];
     f = fr;
   }

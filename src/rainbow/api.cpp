@@ -118,11 +118,11 @@ arcus_status arcus_particle_create_raindrop(arcus_context_t* ctx, double diamete
   return create_particle(ctx, out, [&] { return rainbow::raindrop(diameter); });
 }
 
-arcus_status arcus_particle_create_mesh(arcus_context_t* ctx, const char* path, double scale,
+arcus_status arcus_particle_create_mesh(arcus_context_t* ctx, const char* path, double scale, int32_t smooth,
                                         arcus_particle_t** out) {
   return create_particle(ctx, out, [&] {
     require_pointer(path, "path");
-    return rainbow::mesh(path, scale);
+    return rainbow::mesh(path, scale, smooth != 0);
   });
 }
 

@@ -69,7 +69,18 @@ double solid_angle(const double* a, const double* b, const double* c) {
 // triangles under the shared BVH.
 struct Placed {
   rainbow_cast_desc desc{};
-  bvh::TriangleBvh bvh;  // meshes only
+  bvh::TriangleBvh bvh;         // meshes only
+  std::vector<double> normals;  // smooth meshes: 9 per leaf slot, the vertices' normals
+  rb_mesh host_mesh() const {
+    rb_mesh m{};
+    if (!bvh.tree.order.empty()) {
+      m.nodes = bvh.tree.nodes.data();
+      m.tris = bvh.triangles.data();
+      m.order = reinterpret_cast<const int*>(bvh.tree.order.data());
+      m.normals = normals.empty() ? nullptr : normals.data();
+    }
+    return m;
+  }
 };
 
 Placed place(const Particle& particle, const CastParams& params) {
@@ -94,9 +105,19 @@ Placed place(const Particle& particle, const CastParams& params) {
       double m[12] = {0};
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c) m[4 * r + c] = params.rotation[3 * r + c];
-      pl.bvh = bvh::build_triangles(geometry::transformed(particle.mesh, m));
+      const geometry::Mesh world = geometry::transformed(particle.mesh, m);
+      pl.bvh = bvh::build_triangles(world);
       d.shape[0] = particle.bound;
       d.shape[1] = particle.bound * 1e-9;  // steps a ray off the face it starts on
+      if (particle.smooth) {
+        const std::vector<double> vn = vertex_normals(world);
+        pl.normals.resize(9 * pl.bvh.tree.order.size());
+        for (size_t slot = 0; slot < pl.bvh.tree.order.size(); ++slot) {
+          const uint32_t tri = pl.bvh.tree.order[slot];
+          for (int k = 0; k < 3; ++k)
+            for (int a = 0; a < 3; ++a) pl.normals[9 * slot + 3 * k + a] = vn[3 * world.triangles[3 * tri + k] + a];
+        }
+      }
     }
   }
   return pl;
@@ -185,7 +206,11 @@ std::unique_ptr<RainbowJob> cast(arcus_context_t* ctx, const Particle& particle,
   job->stats.lanes = 1;
   job->stats.groups = 1;
   std::unique_ptr<bvh::DeviceBvh> mesh_bvh;
+  std::unique_ptr<DeviceBuffer> normals_dev;
   if (particle.kind == ARCUS_RAINBOW_SHAPE_MESH) mesh_bvh = std::make_unique<bvh::DeviceBvh>(ctx, pl.bvh, false);
+  if (!pl.normals.empty())
+    normals_dev = std::make_unique<DeviceBuffer>(ctx, pl.normals.size() * sizeof(double), "the mesh's vertex normals",
+                                                 pl.normals.data());
 
   // Traces points[first..first+count) into rec/left (host arrays of `total` rays).
   auto trace = [&](const std::vector<double>& pts, Records& rec, std::vector<double>& left, bool sliced) {
@@ -207,10 +232,11 @@ std::unique_ptr<RainbowJob> cast(arcus_context_t* ctx, const Particle& particle,
       k.set(1, nullptr);
       k.set(2, nullptr);
     }
-    k.set(3, &pts_dev);
-    k.set_value(5, int32_t(total));
-    k.set(6, &rec_dev);
-    k.set(7, &left_dev);
+    k.set(3, normals_dev.get());
+    k.set(4, &pts_dev);
+    k.set_value(6, int32_t(total));
+    k.set(7, &rec_dev);
+    k.set(8, &left_dev);
     int64_t done = 0;
     SliceJob s;
     s.first_units = 65536;
@@ -218,7 +244,7 @@ std::unique_ptr<RainbowJob> cast(arcus_context_t* ctx, const Particle& particle,
       rainbow_cast_desc d = desc;
       d.first = static_cast<int32_t>(done);
       d.count = static_cast<int32_t>(std::min<int64_t>(units, total - done));
-      k.set_value(4, d);
+      k.set_value(5, d);
       const double secs = k.run(ctx, size_t(d.count));
       done += d.count;
       return secs;
@@ -246,14 +272,12 @@ std::unique_ptr<RainbowJob> cast(arcus_context_t* ctx, const Particle& particle,
   // still hits, so the patches reach the edge.
   uint64_t moved = 0;
   if (params.edge_rays) {
+    const rb_mesh host_mesh = pl.host_mesh();
     auto hits = [&](double u, double v) {
       const double o[3] = {u, v, -desc.plane}, k0[3] = {0, 0, 1};
       double t, nrm[3];
-      int face;
-      const bvh::TriangleBvh& b = pl.bvh;
-      const bool mesh = particle.kind == ARCUS_RAINBOW_SHAPE_MESH;
-      return rb_hit(&desc, mesh ? b.tree.nodes.data() : nullptr, mesh ? b.triangles.data() : nullptr,
-                    mesh ? reinterpret_cast<const int*>(b.tree.order.data()) : nullptr, o, k0, 0, &t, nrm, &face) != 0;
+      int slot;
+      return rb_hit(&desc, &host_mesh, o, k0, 0, &t, nrm, &slot) != 0;
     };
     std::vector<double> edge_points;
     std::vector<int> edge_rays;

@@ -63,10 +63,11 @@ Particle raindrop(double diameter) {
   return p;
 }
 
-Particle mesh(const std::string& path, double scale) {
+Particle mesh(const std::string& path, double scale, bool smooth) {
   require(std::isfinite(scale) && scale > 0, "mesh scale must be positive and finite, got " + number(scale));
   Particle p;
   p.kind = ARCUS_RAINBOW_SHAPE_MESH;
+  p.smooth = smooth;
   p.mesh = geometry::load_mesh(path);
   for (double& x : p.mesh.positions) x *= scale;
   // Closed: every edge in exactly two triangles, so a ray that enters must leave.
@@ -96,6 +97,27 @@ Particle mesh(const std::string& path, double scale) {
   p.bound = bound * 1.000001;
   require(p.volume > 0, "mesh " + path + " encloses no volume");
   return p;
+}
+
+std::vector<double> vertex_normals(const geometry::Mesh& mesh) {
+  std::vector<double> n(mesh.positions.size(), 0.0);
+  const auto& x = mesh.positions;
+  const auto& t = mesh.triangles;
+  for (size_t f = 0; f + 2 < t.size(); f += 3) {
+    const double* a = &x[3 * t[f]];
+    const double* b = &x[3 * t[f + 1]];
+    const double* c = &x[3 * t[f + 2]];
+    const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double cr[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    for (int k = 0; k < 3; ++k)
+      for (int a2 = 0; a2 < 3; ++a2) n[3 * t[f + k] + a2] += cr[a2];  // |cross| = 2·area: area-weighted
+  }
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const double l = std::sqrt(n[3 * v] * n[3 * v] + n[3 * v + 1] * n[3 * v + 1] + n[3 * v + 2] * n[3 * v + 2]);
+    require(l > 0, "mesh vertex " + std::to_string(v) + " has no normal (its triangles cancel)");
+    for (int a = 0; a < 3; ++a) n[3 * v + a] /= l;
+  }
+  return n;
 }
 
 double equivalent_radius(const Particle& p) { return std::cbrt(p.volume * 3 / (4 * kPi)); }

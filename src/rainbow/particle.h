@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "geometry/mesh.h"
 #include "rainbow/rainbow_desc.h"
@@ -15,6 +16,7 @@ struct Particle {
   double radius = 0;        // sphere
   double a = 0, b = 0, k = 0;  // raindrop: eq. 4.21's half-width, half-height, deformation
   geometry::Mesh mesh;      // mesh, in metres
+  bool smooth = false;      // mesh: a smooth surface (interpolated vertex normals), not flat faces
   double bound = 0;         // radius of a sphere about the origin holding the particle
   double volume = 0;
 };
@@ -24,7 +26,13 @@ Particle sphere(double radius);
 // Equivalent-volume diameter 1-6 mm (in metres); Table 4.4 interpolated linearly.
 Particle raindrop(double diameter);
 // A mesh file scaled by `scale`; it must be closed: every edge in exactly two triangles.
-Particle mesh(const std::string& path, double scale);
+// smooth: the triangles approximate a smooth surface (a measured drop), whose normals
+// are interpolated from the vertices; otherwise its faces are flat (a crystal).
+Particle mesh(const std::string& path, double scale, bool smooth);
+
+// Per vertex of `mesh`, the area-weighted mean of its triangles' normals, in the
+// triangles' winding (unit; 3 per vertex).
+std::vector<double> vertex_normals(const geometry::Mesh& mesh);
 
 double equivalent_radius(const Particle& p);
 

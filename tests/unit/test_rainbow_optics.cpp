@@ -45,7 +45,8 @@ struct Traced {
 Traced trace(const rainbow_cast_desc& d, double u, double v) {
   Traced t;
   t.rec.assign(size_t(d.bounces + 1) * ARCUS_RAINBOW_RECORD, 0.0);
-  t.left = rb_trace(&d, nullptr, nullptr, nullptr, u, v, t.rec.data(), ARCUS_RAINBOW_RECORD);
+  const rb_mesh none{};
+  t.left = rb_trace(&d, &none, u, v, t.rec.data(), ARCUS_RAINBOW_RECORD);
   return t;
 }
 
@@ -193,8 +194,9 @@ TEST(RainbowOptics, RaindropSurface) {
   for (double u = -0.75; u <= 0.76; u += 0.25) {  // inside the silhouette
     const double o[3] = {u * drop.a, 0.3 * u * drop.b, -3 * drop.bound}, k[3] = {0, 0, 1};
     double t, nrm[3];
-    int face;
-    ASSERT_TRUE(rb_hit(&d, nullptr, nullptr, nullptr, o, k, 0, &t, nrm, &face));
+    int slot;
+    const rb_mesh none{};
+    ASSERT_TRUE(rb_hit(&d, &none, o, k, 0, &t, nrm, &slot));
     const double q[3] = {o[0], o[1], o[2] + t};
     EXPECT_NEAR(rb_raindrop_f(d.shape, q), 0, 1e-12);
     // the normal: the gradient, normalised (by finite differences, 1e-6 relative)
