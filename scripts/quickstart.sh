@@ -4,8 +4,9 @@
 # test scenes and the spectral sunset) to EXR and PNG, runs the Table 5.2 benchmark
 # (what each optimization costs and saves, against the ground truth), traces the curved
 # mirage scene and runs the integrators' accuracy-vs-time benchmark, renders the five
-# waters of the ocean engine with their profiles, energy plots and benchmark, then says
-# where the images and tables are.
+# waters of the ocean engine with their profiles, energy plots and benchmark, tabulates
+# a rainbow phase function against Mie with the rainbow benchmark, then says where the
+# images and tables are.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/bootstrap.sh
@@ -34,6 +35,14 @@ python3 apps/ocean/arcus_ocean.py trace scenes/ocean/fig5_11/baltic_inelastic.js
 python3 apps/ocean/plot_profile_check.py --out out/ocean
 python3 bench/ocean_bench.py --out out/bench
 
+# Rainbows: a 500 µm sphere's phase function over 33 wavelengths against Lorenz–Mie and,
+# per term, the Debye series; the twinned bow of mixed drop shapes; the benchmark.
+mkdir -p out/rainbow
+python3 apps/rainbow/arcus_rainbow.py table --particle sphere:500um --wavelengths 380 700 33 \
+  --theta 120 145 0.01 --plot out/rainbow/sphere.png --per-bounce -o out/rainbow/sphere
+python3 apps/rainbow/plot_twinned.py --out out/rainbow
+python3 bench/rainbow_bench.py --out out/bench
+
 echo
 echo "Rendered scenes:  $(pwd)/out/render/  (<scene>.png, <scene>.exr with distance/steps/tests channels, render.md: Table 5.2)"
 echo "Mirage rays:      $(pwd)/out/mirage/  (paths.png, rays.csv, paths.csv, summary.md)"
@@ -41,3 +50,6 @@ echo "Integrators:      $(pwd)/out/bench/   (tables .md and .csv, plots .png)"
 echo "Underwater light: $(pwd)/out/ocean/   (<water>.png/.exr, fig5_9/ and fig5_12/ plots and tallies.json,"
 echo "                  profiles/<water>/profile.png and .csv, profile_check.png/.md: against discrete ordinates)"
 echo "Ocean benchmark:  $(pwd)/out/bench/ocean.md  (error against time, per stage, both estimators)"
+echo "Rainbows:         $(pwd)/out/rainbow/  (sphere.png: against Mie and per term against Debye, sphere.csv/.npz"
+echo "                  over 33 wavelengths, twinned.png: the twinned bow)"
+echo "Rainbow benchmark: $(pwd)/out/bench/rainbow.md  (grid and drop size against error and time, the targets)"

@@ -140,6 +140,23 @@ int main(void) {
   F(arcus_job_stats, build_seconds) F(arcus_job_stats, kernel_seconds) F(arcus_job_stats, total_seconds)
   F(arcus_job_stats, program_origin) F(arcus_job_stats, lanes) F(arcus_job_stats, groups)
   F(arcus_job_stats, launches)
+  printf("arcus_particle_info %zu\n", sizeof(arcus_particle_info));
+  F(arcus_particle_info, kind) F(arcus_particle_info, equivalent_radius) F(arcus_particle_info, volume)
+  F(arcus_particle_info, bound_radius) F(arcus_particle_info, triangles)
+  printf("arcus_rainbow_params %zu\n", sizeof(arcus_rainbow_params));
+  F(arcus_rainbow_params, wavelength_nm) F(arcus_rainbow_params, material) F(arcus_rainbow_params, temperature_c)
+  F(arcus_rainbow_params, refractive_index) F(arcus_rainbow_params, grid) F(arcus_rainbow_params, alpha)
+  F(arcus_rainbow_params, max_bounces) F(arcus_rainbow_params, edge_rays) F(arcus_rainbow_params, rotation)
+  F(arcus_rainbow_params, query_phi_deg) F(arcus_rainbow_params, progress) F(arcus_rainbow_params, progress_user)
+  printf("arcus_rainbow_stats %zu\n", sizeof(arcus_rainbow_stats));
+  F(arcus_rainbow_stats, refractive_index) F(arcus_rainbow_stats, rays) F(arcus_rainbow_stats, hits)
+  F(arcus_rainbow_stats, edge_rays) F(arcus_rainbow_stats, patches) F(arcus_rainbow_stats, patches_rejected)
+  F(arcus_rainbow_stats, patches_folded) F(arcus_rainbow_stats, intercepted) F(arcus_rainbow_stats, scattered)
+  F(arcus_rainbow_stats, remaining) F(arcus_rainbow_stats, cast_seconds) F(arcus_rainbow_stats, patch_seconds)
+  F(arcus_rainbow_stats, bvh_seconds) F(arcus_rainbow_stats, query_seconds)
+  printf("arcus_mie_efficiencies %zu\n", sizeof(arcus_mie_efficiencies));
+  F(arcus_mie_efficiencies, q_ext) F(arcus_mie_efficiencies, q_sca) F(arcus_mie_efficiencies, q_back)
+  F(arcus_mie_efficiencies, g)
   return 0;
 }
 """
@@ -150,6 +167,10 @@ STRUCTS = {
     "arcus_atmosphere_desc": _lib.AtmosphereDescStruct,
     "arcus_advance_params": _lib.AdvanceParamsStruct,
     "arcus_job_stats": _lib.JobStatsStruct,
+    "arcus_particle_info": _lib.ParticleInfoStruct,
+    "arcus_rainbow_params": _lib.RainbowParamsStruct,
+    "arcus_rainbow_stats": _lib.RainbowStatsStruct,
+    "arcus_mie_efficiencies": _lib.MieEfficienciesStruct,
 }
 
 
@@ -173,7 +194,7 @@ def test_struct_layouts_match_c_compiler(repo, tmp_path):
             descriptor = getattr(STRUCTS[struct_name], member)
             assert (descriptor.offset, descriptor.size) == (int(words[1]), int(words[2])), line
         checked += 1
-    assert checked == 5 + sum(len(s._fields_) for s in STRUCTS.values())
+    assert checked == len(STRUCTS) + sum(len(s._fields_) for s in STRUCTS.values())
 
 
 # ---- finding the library ---------------------------------------------------------------

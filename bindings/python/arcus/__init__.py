@@ -19,7 +19,7 @@ The shared library is looked up, in order, at the ARCUS_LIBRARY environment vari
 
 import ctypes as _ctypes
 
-from . import media, ocean
+from . import media, mie, ocean, rainbow
 from ._constants import (
     DEVICE_DEFAULT,
     EARTH_RADIUS,
@@ -88,7 +88,9 @@ __all__ = [
     "feature_names",
     "library_path",
     "media",
+    "mie",
     "ocean",
+    "rainbow",
     "render",
 ]
 

@@ -98,7 +98,6 @@ class JobStatsStruct(ctypes.Structure):
     ]
 
 
-#: void (*arcus_error_callback)(void* user, arcus_status status, const char* message)
 class CameraStruct(ctypes.Structure):
     _fields_ = [
         ("position", c_double * 3),
@@ -227,6 +226,53 @@ class OceanRenderStatsStruct(ctypes.Structure):
         ("photons_stored", c_uint64)]
 
 
+
+# ---- rainbows and Lorenz–Mie (arcus_rainbow.h) ----------------------------------------
+
+
+class ParticleInfoStruct(ctypes.Structure):
+    """arcus_particle_info."""
+
+    _fields_ = [("kind", c_int32), ("equivalent_radius", c_double), ("volume", c_double),
+                ("bound_radius", c_double), ("triangles", c_uint32)]
+
+
+class RainbowParamsStruct(ctypes.Structure):
+    """arcus_rainbow_params."""
+
+    _fields_ = [
+        ("wavelength_nm", c_double),
+        ("material", c_int32),
+        ("temperature_c", c_double),
+        ("refractive_index", c_double),
+        ("grid", c_uint32),
+        ("alpha", c_double),
+        ("max_bounces", c_uint32),
+        ("edge_rays", c_int32),
+        ("rotation", c_double * 9),
+        ("query_phi_deg", c_double),
+        ("progress", PROGRESS_CALLBACK),
+        ("progress_user", c_void_p),
+    ]
+
+
+class RainbowStatsStruct(ctypes.Structure):
+    """arcus_rainbow_stats."""
+
+    _fields_ = [("refractive_index", c_double)] + [
+        (name, c_uint64) for name in ("rays", "hits", "edge_rays", "patches", "patches_rejected",
+                                      "patches_folded")] + [
+        ("intercepted", c_double), ("scattered", c_double * 16), ("remaining", c_double)] + [
+        (name, c_double) for name in ("cast_seconds", "patch_seconds", "bvh_seconds", "query_seconds")]
+
+
+class MieEfficienciesStruct(ctypes.Structure):
+    """arcus_mie_efficiencies."""
+
+    _fields_ = [("q_ext", c_double), ("q_sca", c_double), ("q_back", c_double), ("g", c_double)]
+
+
+#: void (*arcus_error_callback)(void* user, arcus_status status, const char* message)
 ERROR_CALLBACK = ctypes.CFUNCTYPE(None, c_void_p, c_int, c_char_p)
 
 # ---- prototypes -----------------------------------------------------------------------
@@ -343,6 +389,27 @@ _PROTOTYPES = {
     "arcus_job_get_ocean_photons": (
         _status,
         [_handle, POINTER(c_size_t), _dvec, _dvec, _dvec, _dvec, POINTER(c_int32)],
+    ),
+    "arcus_refractive_index": (_status, [c_int32, c_double, c_double, _dvec]),
+    "arcus_particle_create_sphere": (_status, [_handle, c_double, _out_handle]),
+    "arcus_particle_create_raindrop": (_status, [_handle, c_double, _out_handle]),
+    "arcus_particle_create_mesh": (_status, [_handle, c_char_p, c_double, c_int32, _out_handle]),
+    "arcus_particle_retain": (_status, [_handle]),
+    "arcus_particle_release": (_status, [_handle]),
+    "arcus_particle_get_info": (_status, [_handle, POINTER(ParticleInfoStruct)]),
+    "arcus_rainbow_params_init": (_status, [POINTER(RainbowParamsStruct)]),
+    "arcus_rainbow_cast": (_status, [_handle, _handle, POINTER(RainbowParamsStruct), _out_handle]),
+    "arcus_job_get_rainbow_stats": (_status, [_handle, POINTER(RainbowStatsStruct)]),
+    "arcus_job_rainbow_phase": (_status, [_handle, c_size_t, _dvec, _dvec, c_int32, _dvec, _dvec, _dvec]),
+    "arcus_job_rainbow_phasors": (_status, [_handle, c_size_t, _dvec, _dvec, _dvec]),
+    "arcus_mie": (
+        _status,
+        [c_double, c_double, c_double, c_double, c_size_t, _dvec, _dvec, _dvec, _dvec, _dvec,
+         POINTER(MieEfficienciesStruct)],
+    ),
+    "arcus_mie_debye": (
+        _status,
+        [c_double, c_double, c_double, c_double, c_uint32, c_size_t, _dvec, _dvec, _dvec, _dvec, _dvec],
     ),
 }
 

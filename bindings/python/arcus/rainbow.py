@@ -1,0 +1,398 @@
+"""Rainbows (thesis §2.1.1, §4.4, §5.5): phase functions of single particles.
+
+::
+
+    import numpy as np
+    import arcus.rainbow as rainbow
+
+    drop = rainbow.Sphere(250e-6)                        # radius in metres
+    theta = np.arange(130.0, 145.0, 0.05)                # degrees from the forward direction
+    r = rainbow.phase_function(drop, 650.0, theta, grid=1000, max_bounces=3)
+    print(r.unpolarized, r.per_bounce[:, 2], r.refractive_index, r.stats["patches"])
+
+A particle is a description (plain Python values: :class:`Sphere`, :class:`Raindrop`,
+:class:`Mesh`); the library's particle is created on a context the first time it is
+used there (``context=`` one of yours, else a new one on the default device).  The
+library casts a grid of rays at the particle, follows each through p = 0..P
+(p − 1 internal reflections) with the phasors of both incident polarisations, and
+collects them on a sphere of patches that is queried at the directions asked for,
+adding the patches' phasors with their phases (interference) or their intensities.
+
+Units: metres for sizes, nanometres (in air) for wavelengths, degrees for angles.
+Frame: the light travels along +z; a direction (θ, φ) has θ from +z (0: forward,
+180: straight back) and φ from +x toward +y.  Phase functions are per steradian,
+normalised so that the light scattered in p = 0..P integrates to 1 over the sphere;
+"parallel" and "perpendicular" are the scattered light's components in and normal
+to the scattering plane for unpolarised incident light, and "unpolarized" their sum.
+
+Lorenz–Mie and its Debye series, the reference for spheres, are in :mod:`arcus.mie`.
+"""
+
+import math
+import weakref
+from ctypes import byref, c_double, c_uint64, c_void_p
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _lib
+from ._args import to_bool, to_choice, to_float, to_int, to_path, to_real_array
+from ._errors import ArgumentError
+from ._lib import lib
+
+#: arcus_material values by name.
+MATERIALS = dict(water=0, ice=1, fixed=2)
+#: arcus_particle_kind values by name.
+PARTICLE_KINDS = {0: "sphere", 1: "raindrop", 2: "mesh"}
+#: The most terms P a cast traces (ARCUS_RAINBOW_MAX_BOUNCES).
+MAX_BOUNCES = 15
+POLARIZATIONS = dict(unpolarized="unpolarized", unpolarised="unpolarized", parallel="parallel",
+                     perpendicular="perpendicular")
+
+def _material(material, name="material"):
+    return to_choice(material, name, MATERIALS)
+
+
+# ---- refractive index ---------------------------------------------------------------
+
+
+def refractive_index(material="water", wavelength=550.0, temperature=20.0):
+    """The real refractive index of ``material`` ("water": IAPWS R9-97 at 1 atm and
+    ``temperature`` °C; "ice": ice Ih) relative to air at ``wavelength`` nm (in air).
+
+    ``wavelength`` may be a number (a float comes back) or an array (an array of the
+    same shape).  A wavelength or temperature outside the formulation's range raises
+    :class:`arcus.ArgumentError` naming it."""
+    m = _material(material)
+    if m == MATERIALS["fixed"]:
+        raise ArgumentError("material: 'water' or 'ice' (a fixed index is simply a number), got %r" % (material,))
+    t = to_float(temperature, "temperature")
+    nm = to_real_array(wavelength, "wavelength")
+    out = np.empty(nm.shape)
+    n = c_double()
+    for i, w in np.ndenumerate(nm):
+        _lib.check(lib.arcus_refractive_index(m, float(w), t, byref(n)))
+        out[i] = n.value
+    return float(out) if out.ndim == 0 else out
+
+
+# ---- particles ----------------------------------------------------------------------
+
+
+class Particle:
+    """A particle description; the library's particle is created per context on first
+    use (:meth:`info` shows what the library made of it)."""
+
+    kind = None
+
+    def __init__(self):
+        # Context state -> its _Handle of this particle.  Weak keys: a context that is
+        # gone needs no particle; the context also releases the handle when closed.
+        self._handles = weakref.WeakKeyDictionary()
+
+    def _create(self, ctx_handle, out):  # pragma: no cover - overridden
+        raise NotImplementedError
+
+    def _handle_on(self, ctx):
+        """The library handle of this particle on ``ctx`` (an arcus.Context)."""
+        from .context import _Handle
+        ctx_handle = ctx._handle
+        state = ctx._state
+        with state.lock:
+            handle = self._handles.get(state)
+            if handle is None:
+                out = c_void_p()
+                ctx._check(self._create(ctx_handle, byref(out)))
+                handle = _Handle(out.value, lib.arcus_particle_release)
+                self._handles[state] = handle
+                state.objects.add(handle)  # released with the context at the latest
+            return handle.value
+
+    def info(self, context=None):
+        """What the library made of the particle: a dict with ``kind``,
+        ``equivalent_radius`` (of the sphere of equal volume, m), ``volume`` (m³),
+        ``bound_radius`` (m) and ``triangles`` (meshes)."""
+        ctx, owned = _context(context)
+        try:
+            s = _lib.ParticleInfoStruct()
+            ctx._check(lib.arcus_particle_get_info(self._handle_on(ctx), byref(s)))
+        finally:
+            if owned:
+                ctx.close()
+        d = {name: getattr(s, name) for name, _ in s._fields_}
+        d["kind"] = PARTICLE_KINDS.get(s.kind, str(s.kind))
+        return d
+
+
+class Sphere(Particle):
+    """A sphere of ``radius`` metres (traced in closed form)."""
+
+    kind = "sphere"
+
+    def __init__(self, radius):
+        super().__init__()
+        self.radius = to_float(radius, "radius")
+
+    def _create(self, ctx_handle, out):
+        return lib.arcus_particle_create_sphere(ctx_handle, self.radius, out)
+
+    def __repr__(self):
+        return "Sphere(radius=%r)" % self.radius
+
+
+class Raindrop(Particle):
+    """The thesis' falling raindrop (eq. 4.21, Table 4.4) of equivalent ``diameter``
+    metres, 1e-3 to 6e-3: flattened underneath, its symmetry axis its own y (up)."""
+
+    kind = "raindrop"
+
+    def __init__(self, diameter):
+        super().__init__()
+        self.diameter = to_float(diameter, "diameter")
+
+    def _create(self, ctx_handle, out):
+        return lib.arcus_particle_create_raindrop(ctx_handle, self.diameter, out)
+
+    def __repr__(self):
+        return "Raindrop(diameter=%r)" % self.diameter
+
+
+class Mesh(Particle):
+    """A closed triangle mesh file (OBJ, PLY, OFF, STL) read by the library, its
+    coordinates multiplied by ``scale`` to give metres.  The file is read when the
+    particle is first used; a missing file or an open mesh raises then.
+
+    ``smooth`` says what the triangles stand for:
+
+    * True (the default): they approximate a smooth surface (a measured drop, a
+      tessellated sphere).  Normals and their curvature are interpolated from the
+      vertices, so the phase function is the smooth surface's: a fine enough
+      icosphere gives a sphere's rainbows.
+    * False: the faces really are flat (a crystal).  In one orientation each sequence
+      of faces a ray passes through sends all its light into a single direction, a
+      peak that no patch between neighbouring rays can hold; so the phase function
+      is about zero apart from light falling between such peaks, while the cast's
+      ``stats`` (``scattered``) still give each term's power.  This is what flat
+      faces do, not a fault; averaging over orientations spreads the peaks out.
+    """
+
+    kind = "mesh"
+
+    def __init__(self, path, scale=1.0, smooth=True):
+        super().__init__()
+        self._path = to_path(path, "path")
+        self.path = path
+        self.scale = to_float(scale, "scale")
+        self.smooth = to_bool(smooth, "smooth")
+
+    def _create(self, ctx_handle, out):
+        return lib.arcus_particle_create_mesh(ctx_handle, self._path, self.scale, int(self.smooth), out)
+
+    def __repr__(self):
+        return "Mesh(%r, scale=%r, smooth=%r)" % (self.path, self.scale, self.smooth)
+
+
+def _context(context):
+    """(context, owned): the caller's context, or a new one to close afterwards."""
+    if context is not None:
+        from .context import Context
+        if not isinstance(context, Context):
+            raise ArgumentError("context must be an arcus.Context or None, got %r" % (context,))
+        return context, False
+    from .context import Context
+    return Context(), True
+
+
+# ---- the phase function -------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)  # element-wise array comparison has no single truth value
+class PhaseResult:
+    """A particle's phase function from :func:`phase_function` (per steradian; the light
+    of p = 0..P integrates to 1 over the sphere).
+
+    Attributes:
+        theta: (T,) scattering angles [deg].
+        phi: the azimuth [deg] of a 1-D table (a float), or the (F,) azimuths of a 2-D one.
+        parallel, perpendicular: (T,) or (T, F): components in and normal to the
+            scattering plane, for unpolarised incident light.
+        unpolarized: parallel + perpendicular.
+        per_bounce: (T, P+1) or (T, F, P+1): term p alone (p − 1 internal reflections),
+            unpolarised.  Coherent, the terms interfere with one another too, so they
+            need not add up to ``unpolarized``; incoherent, they do.
+        polarization: which of the three :attr:`value` is.
+        refractive_index: the particle's index relative to air at this wavelength.
+        wavelength: [nm].
+        coherent: phasors added with their phases (True) or intensities (False).
+        stats: arcus_rainbow_stats as a dict (rays, hits, edge_rays, patches,
+            patches_rejected, patches_folded, intercepted [m²], scattered (P+1,) and remaining as
+            fractions of the intercepted power, seconds per stage) plus total_seconds.
+        features: kernel features the cast compiled (e.g. {"RAINBOW_MESH"}).
+    """
+
+    theta: np.ndarray
+    phi: object
+    parallel: np.ndarray
+    perpendicular: np.ndarray
+    unpolarized: np.ndarray
+    per_bounce: np.ndarray
+    polarization: str
+    refractive_index: float
+    wavelength: float
+    coherent: bool
+    stats: dict
+    features: frozenset
+
+    @property
+    def value(self):
+        """The phase function of the polarisation asked for (``polarization``)."""
+        return getattr(self, self.polarization)
+
+    @property
+    def max_bounces(self):
+        return self.per_bounce.shape[-1] - 1
+
+
+def _angles(value, name, low, high):
+    array = to_real_array(value, name)
+    if array.ndim > 1:
+        raise ArgumentError("%s must be a number or a 1-D array, got shape %s" % (name, array.shape))
+    bad = ~np.isfinite(array)
+    if low is not None:
+        bad |= (array < low) | (array > high)
+    if bad.any():
+        i = int(np.flatnonzero(bad.ravel())[0])
+        what = "finite" if low is None else "within [%g, %g] degrees" % (low, high)
+        raise ArgumentError("%s[%d] must be %s, got %r" % (name, i, what, float(array.ravel()[i])))
+    return np.ascontiguousarray(np.atleast_1d(array))
+
+
+def _rotation(rotation):
+    if rotation is None:
+        return [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
+    r = to_real_array(rotation, "rotation")
+    if r.shape not in ((3, 3), (9,)):
+        raise ArgumentError("rotation must be a 3x3 matrix (particle -> world), got shape %s" % (r.shape,))
+    return [float(v) for v in r.ravel()]
+
+
+def phase_function(particle, wavelength, theta, phi=None, grid=1000, max_bounces=3, polarization="unpolarized",
+                   alpha=0.3, edge_rays=True, material="water", temperature=20.0, refractive_index=None,
+                   rotation=None, coherent=True, context=None, progress=None):
+    """The phase function of ``particle`` at ``wavelength`` nm (in air, one value) and
+    scattering angles ``theta`` degrees (0 forward, 180 back): a :class:`PhaseResult`.
+
+    Args:
+        particle: a :class:`Sphere`, :class:`Raindrop` or :class:`Mesh` (sizes in metres).
+        phi: None: a 1-D table at azimuth 0 (only the patches reaching that half-plane
+            are kept: fast); a number: a 1-D table at that azimuth [deg]; a 1-D array:
+            a 2-D table over θ × φ (every patch is kept; slower).
+        grid: rays per side of the cast grid (4-8192; the cast is grid² rays).
+        max_bounces: P, terms p = 0..P (0-15).
+        polarization: which component :attr:`PhaseResult.value` is: "unpolarized",
+            "parallel" or "perpendicular" (all three are always computed).
+        alpha: the grid's warp, eq. 4.27-4.28 (0.3; 1: uniform).
+        edge_rays: move grid points just outside onto the projected edge (§4.4.3.1).
+        material: "water" (at ``temperature`` °C) or "ice"; ``refractive_index`` (a
+            number) overrides it with a fixed index at every wavelength.
+        rotation: the particle's orientation, a 3x3 particle -> world rotation.
+        coherent: add phasors with their phases (interference, eq. 4.31), or
+            intensities (geometric optics).
+        context: an arcus.Context (else a new one on the default device).
+        progress: ``progress(fraction)`` during the cast; returning True cancels it.
+    """
+    if not isinstance(particle, Particle):
+        raise ArgumentError("particle must be an arcus.rainbow Sphere, Raindrop or Mesh, got %r" % (particle,))
+    if not (isinstance(wavelength, (int, float)) or np.ndim(wavelength) == 0):
+        raise ArgumentError("wavelength must be one number (nm) here; for tables over wavelengths call this per "
+                            "wavelength or use apps/rainbow/arcus_rainbow.py table, got %r" % (wavelength,))
+    wl = to_float(wavelength.item() if isinstance(wavelength, np.ndarray) else wavelength, "wavelength")
+    theta = _angles(theta, "theta", 0.0, 180.0)
+    two_d = phi is not None and np.ndim(phi) > 0
+    if phi is None:
+        phis, query_phi = np.zeros(1), 0.0
+    else:
+        phis = _angles(phi, "phi", None, None)
+        query_phi = math.nan if two_d else float(phis[0])
+    polarization = to_choice(polarization, "polarization", POLARIZATIONS)
+    params = _lib.RainbowParamsStruct()
+    _lib.check(lib.arcus_rainbow_params_init(byref(params)))
+    params.wavelength_nm = wl
+    params.temperature_c = to_float(temperature, "temperature")
+    m = _material(material)
+    if refractive_index is not None:
+        if m != MATERIALS["water"] and m != MATERIALS["fixed"]:
+            raise ArgumentError("refractive_index and material=%r exclude one another" % (material,))
+        params.material = MATERIALS["fixed"]
+        params.refractive_index = to_float(refractive_index, "refractive_index")
+    elif m == MATERIALS["fixed"]:
+        raise ArgumentError("material='fixed' needs refractive_index")
+    else:
+        params.material = m
+    params.grid = to_int(grid, "grid", 0, 2 ** 32 - 1)
+    params.max_bounces = to_int(max_bounces, "max_bounces", 0, 2 ** 32 - 1)
+    params.alpha = to_float(alpha, "alpha")
+    params.edge_rays = int(to_bool(edge_rays, "edge_rays"))
+    params.rotation = (c_double * 9)(*_rotation(rotation))
+    params.query_phi_deg = query_phi
+    coherent = to_bool(coherent, "coherent")
+    from .context import _check_progress
+    _check_progress(progress)
+
+    if two_d:
+        tt, ff = np.meshgrid(theta, phis, indexing="ij")
+        q_theta, q_phi, shape = np.ascontiguousarray(tt.ravel()), np.ascontiguousarray(ff.ravel()), tt.shape
+    else:
+        q_theta, q_phi, shape = theta, np.full(theta.size, phis[0]), theta.shape
+
+    ctx, owned = _context(context)
+    try:
+        handle = particle._handle_on(ctx)
+
+        def start(callback, job_out):
+            params.progress = callback
+            return lib.arcus_rainbow_cast(ctx._handle, handle, byref(params), job_out)
+
+        def read(job):
+            terms = params.max_bounces + 1
+            count = q_theta.size
+            par, perp, per = np.zeros(count), np.zeros(count), np.zeros((count, terms))
+            ctx._check(lib.arcus_job_rainbow_phase(
+                job, count, _lib.ptr(q_theta), _lib.ptr(q_phi), int(coherent), _lib.ptr(par), _lib.ptr(perp),
+                _lib.ptr(per)))
+            s = _lib.RainbowStatsStruct()
+            ctx._check(lib.arcus_job_get_rainbow_stats(job, byref(s)))
+            stats = {name: getattr(s, name) for name, _ in s._fields_ if name != "scattered"}
+            stats["scattered"] = np.array(s.scattered[:terms])
+            js = _lib.JobStatsStruct()
+            ctx._check(lib.arcus_job_get_stats(job, byref(js)))
+            stats["total_seconds"] = js.total_seconds
+            bits = c_uint64()
+            ctx._check(lib.arcus_job_get_features(job, byref(bits)))
+            par, perp = par.reshape(shape), perp.reshape(shape)
+            return PhaseResult(theta=theta.copy(), phi=phis.copy() if two_d else float(phis[0]), parallel=par,
+                               perpendicular=perp, unpolarized=par + perp, per_bounce=per.reshape(shape + (terms,)),
+                               polarization=polarization, refractive_index=s.refractive_index, wavelength=wl,
+                               coherent=coherent, stats=stats, features=_lib.feature_names(bits.value))
+
+        return ctx._run_job(start, progress, False, "arcus_rainbow_cast", reader=read)
+    finally:
+        if owned:
+            ctx.close()
+
+
+def rainbow_angle(n, p=2):
+    """The geometric-optics rainbow angle of term ``p`` (2: primary, 3: secondary) for
+    refractive index ``n`` (Descartes' minimum deviation; thesis eq. 4.20 for p = 2), as
+    a scattering angle in degrees from the forward direction (about 138° and 129° for
+    water)."""
+    k = p - 1  # internal reflections
+    n = float(n)
+    if not 1 < n < p:
+        raise ArgumentError("n must lie in (1, %d) for p = %d, got %r" % (p, p, n))
+    cos_i = math.sqrt((n * n - 1) / (k * (k + 2)))  # incidence of minimum deviation
+    i = math.acos(cos_i)
+    r = math.asin(math.sin(i) / n)
+    deviation = 2 * (i - r) + k * (math.pi - 2 * r)  # total turning angle
+    theta = math.degrees(deviation) % 360.0
+    return 360.0 - theta if theta > 180.0 else theta
