@@ -342,7 +342,7 @@ def cmd_table(args):
             for nm in wl:
                 results.append(rainbow.phase_function(
                     particle, float(nm), theta, phi=phi, grid=args.grid, max_bounces=args.max_bounces,
-                    material=args.material, temperature=args.temperature, coherent=not args.incoherent,
+                    material=args.material, temperature=args.temperature, coherent=not args.incoherent, caustics=args.caustics,
                     context=ctx))
                 bar.step()
         finally:
@@ -465,6 +465,9 @@ def parser():
     t.add_argument("--grid", type=int, default=1000, help="rays per side of the cast grid (1000)")
     t.add_argument("--max-bounces", type=int, default=3, help="P: terms p = 0..P (3)")
     t.add_argument("--incoherent", action="store_true", help="add intensities (no interference)")
+    t.add_argument("--caustics", choices=("uniform", "rays"), default="uniform",
+                   help="at a rainbow angle: the uniform (Airy) approximation of its two rays (default), or their "
+                        "plain sum as the thesis (eq. 4.31)")
     m = sub.add_parser("mie", help="Lorenz–Mie and Debye terms for a sphere (arcus.mie)")
     common(m, "out/rainbow/mie")
     m.add_argument("--debye", type=int, metavar="P", help="also the Debye terms p = 0..P")

@@ -126,13 +126,17 @@ ARCUS_API arcus_status arcus_job_get_rainbow_stats(arcus_job_t* job, arcus_rainb
  *   parallel, perpendicular [count]  for unpolarised incident light (either may be NULL)
  *   per_bounce [count × (P+1)]       unpolarised, term p alone (may be NULL)
  * coherent = 1 adds the patches' phasors with their optical-path and focal-line phases
- * (interference, eq. 4.31); 0 adds their intensities (geometric optics). */
+ * (interference, eq. 4.31), except where the two rays of one term meet at a fold caustic
+ * (a rainbow angle): there their sum is the uniform (Airy) approximation of the same two
+ * rays, which stays finite and peaks where the wave does; 2 adds them by eq. 4.31 alone,
+ * as the thesis does (the rays' intensity then peaks at the geometric caustic); 0 adds
+ * their intensities (geometric optics). */
 ARCUS_API arcus_status arcus_job_rainbow_phase(arcus_job_t* job, size_t count, const double* theta_deg,
                                                const double* phi_deg, int32_t coherent, double* parallel,
                                                double* perpendicular, double* per_bounce);
-/* The raw sums behind it, per direction and term p: the four phasors E_hθ, E_hφ, E_vθ,
- * E_vφ (re, im) with their phases applied, summed over the patches holding the
- * direction, unnormalised [count × (P+1) × 8]. */
+/* The raw sums behind it (coherent = 1), per direction and term p: the four phasors
+ * E_hθ, E_hφ, E_vθ, E_vφ (re, im) with their phases applied, summed over the patches
+ * holding the direction, unnormalised [count × (P+1) × 8]. */
 ARCUS_API arcus_status arcus_job_rainbow_phasors(arcus_job_t* job, size_t count, const double* theta_deg,
                                                  const double* phi_deg, double* phasors);
 

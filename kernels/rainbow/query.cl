@@ -5,14 +5,30 @@
  * direction, and the sum over patches with the phase of the path and the focal lines
  * (eq. 4.31).  One direction per work-item, scalar: the walks differ per direction.
  *
- * corners  12 reals per patch corner record: direction (3), the four phasors (8) already
- *          normalised by eq. 4.29 and turned by −π/2 per focal line, optical path (1)
+ * corners  ARCUS_RAINBOW_CORNER reals per patch corner (rainbow_desc.h)
  * patches  rainbow_patch per patch; triangle t of the BVH is half t % 2 of patch t / 2
  * dirs     3 reals per query direction (unit)
  * out      per direction and term: ARCUS_RAINBOW_QUERY_REALS (rainbow_desc.h)
  *
+ * Near a fold caustic — the rainbow angle of a term — the two rays of the term that meet
+ * there have amplitudes that grow without bound as they merge (geometric optics), while
+ * the wave's intensity peaks at the Airy maximum a little inside the bow.  Where a
+ * direction lies in exactly two patches of one term whose rays passed focal lines
+ * differing by one, and whose phases lie within a few fringes of each other, their sum
+ * is replaced by the uniform approximation of Chester, Friedman & Ursell (1957; Kravtsov
+ * 1964, Ludwig 1966 for waves), which is the Airy function's form of the same two
+ * rays: with Φ± their path phases (Φ+ for the ray with the extra focal line, which has
+ * the larger), ξ = (Φ+ − Φ−)/2, ζ = (3ξ/2)^{2/3} and a± their amplitudes without phases,
+ *   U = e^{i(Φc − π/2·F− − π/4)} √π [(a+ + a−) ζ^{1/4} Ai(−ζ) + i (a+ − a−) ζ^{−1/4} Ai'(−ζ)],
+ * Φc = (Φ+ + Φ−)/2, which tends to the two rays' sum a few fringes away (where it is no
+ * longer applied) and stays finite at the caustic.  The dark side, where no ray goes,
+ * stays dark.
+ *
  * Host prepends: common/real.h, bvh/bvh_desc.h, bvh/traverse.h, rainbow/rainbow_desc.h,
- * rainbow/optics.h. */
+ * rainbow/optics.h, rainbow/airy.h. */
+
+#define RB_MAX_PAIRED 8   /* contributions remembered per direction for the pairing */
+#define RB_UNIFORM_ZETA 30 /* ζ beyond which the two rays' sum is the Airy form to ~1e-6 */
 
 /* The bilinear coordinates (s, t) of the direction d in the patch with corners c0..c3
  * (unit vectors): B(s, t) = c0 + s·(c1 − c0) + t·(c3 − c0) + s·t·(c0 − c1 + c2 − c3)
@@ -60,6 +76,10 @@ __kernel void arcus_rainbow_query(__global const bvh_node* nodes, __global const
   __global REAL* o = out + (size_t)i * (size_t)q.terms * ARCUS_RAINBOW_QUERY_REALS;
   for (int c = 0; c < q.terms * ARCUS_RAINBOW_QUERY_REALS; ++c) o[c] = RC(0);
   const REAL d[3] = {dirs[3 * i], dirs[3 * i + 1], dirs[3 * i + 2]};
+  /* the contributions, for the pairing at caustics: term, focal lines, path phase and the
+   * four amplitudes without phases */
+  int kept = 0, kept_p[RB_MAX_PAIRED], kept_f[RB_MAX_PAIRED];
+  REAL kept_phase[RB_MAX_PAIRED], kept_a[RB_MAX_PAIRED][8];
   bvh_ray r;
   bvh_ray_init(&r, RC(0), RC(0), RC(0), d[0], d[1], d[2]);
   bvh_walk w;
@@ -71,7 +91,7 @@ __kernel void arcus_rainbow_query(__global const bvh_node* nodes, __global const
     const int tri = order[s];
     const rainbow_patch pt = patches[tri / 2];
     __global const REAL* c[4];
-    for (int k = 0; k < 4; ++k) c[k] = corners + (size_t)pt.corner[k] * 12;
+    for (int k = 0; k < 4; ++k) c[k] = corners + (size_t)pt.corner[k] * ARCUS_RAINBOW_CORNER;
     REAL cc[4][3];
     for (int k = 0; k < 4; ++k)
       for (int a = 0; a < 3; ++a) cc[k][a] = c[k][a];
@@ -80,7 +100,8 @@ __kernel void arcus_rainbow_query(__global const bvh_node* nodes, __global const
     rb_bilinear_coordinates(cc[0], cc[1], cc[2], cc[3], d, &bs, &bt);
     const REAL wgt[4] = {(RC(1) - bs) * (RC(1) - bt), bs * (RC(1) - bt), bs * bt, (RC(1) - bs) * bt};
     REAL e[9];
-    for (int x = 0; x < 9; ++x) e[x] = wgt[0] * c[0][3 + x] + wgt[1] * c[1][3 + x] + wgt[2] * c[2][3 + x] + wgt[3] * c[3][3 + x];
+    for (int x = 0; x < 9; ++x)
+      e[x] = wgt[0] * c[0][3 + x] + wgt[1] * c[1][3 + x] + wgt[2] * c[2][3 + x] + wgt[3] * c[3][3 + x];
     /* eq. 4.31: the optical path's phase (the focal lines' is in the corners already) */
     const REAL phase = q.wave_number * e[8];
     const rb_complex shift = rb_c(cos(phase), sin(phase));
@@ -90,6 +111,62 @@ __kernel void arcus_rainbow_query(__global const bvh_node* nodes, __global const
       op[2 * k] += z.re;
       op[2 * k + 1] += z.im;
       op[8 + k] += e[2 * k] * e[2 * k] + e[2 * k + 1] * e[2 * k + 1];
+    }
+    if (q.coherent && kept < RB_MAX_PAIRED) {
+      const int focal = (int)c[0][12]; /* a kept patch's corners all passed the same */
+      const REAL back = RC(1.5707963267948966) * (REAL)focal; /* undo the corners' −π/2·F */
+      const rb_complex unturn = rb_c(cos(back), sin(back));
+      kept_p[kept] = pt.p;
+      kept_f[kept] = focal;
+      kept_phase[kept] = phase;
+      for (int k = 0; k < 4; ++k) {
+        const rb_complex a = rb_mul(rb_c(e[2 * k], e[2 * k + 1]), unturn);
+        kept_a[kept][2 * k] = a.re;
+        kept_a[kept][2 * k + 1] = a.im;
+      }
+      ++kept;
+    }
+  }
+  /* the uniform approximation where a term's two rays meet at a fold */
+  for (int p = 0; p < q.terms && q.coherent; ++p) {
+    int first = -1, second = -1, n = 0;
+    for (int k = 0; k < kept; ++k)
+      if (kept_p[k] == p) {
+        if (n == 0) first = k;
+        if (n == 1) second = k;
+        ++n;
+      }
+    if (n != 2 || abs(kept_f[first] - kept_f[second]) != 1) continue;
+    const int hi = kept_f[first] > kept_f[second] ? first : second, lo = hi == first ? second : first;
+    const REAL xi = RC(0.5) * (kept_phase[hi] - kept_phase[lo]);
+    if (!(xi > RC(0))) continue; /* not the two rays of one fold */
+    const REAL zeta = pow(RC(1.5) * xi, RC(2) / RC(3));
+    if (zeta > RC(RB_UNIFORM_ZETA)) continue;
+    REAL ai, aip;
+    rb_airy_negative(zeta, &ai, &aip);
+    const REAL z4 = sqrt(sqrt(fmax(zeta, RC(1e-30))));
+    const REAL common = RC(0.5) * (kept_phase[hi] + kept_phase[lo]) -
+                        RC(1.5707963267948966) * (REAL)kept_f[lo] - RC(0.785398163397448310);
+    const rb_complex lead = rb_c(cos(common), sin(common));
+    const REAL root_pi = RC(1.77245385090551603);
+    __global REAL* op = o + (size_t)p * ARCUS_RAINBOW_QUERY_REALS;
+    for (int k = 0; k < 4; ++k) {
+      const rb_complex sum = rb_c(kept_a[hi][2 * k] + kept_a[lo][2 * k], kept_a[hi][2 * k + 1] + kept_a[lo][2 * k + 1]);
+      const rb_complex diff =
+          rb_c(kept_a[hi][2 * k] - kept_a[lo][2 * k], kept_a[hi][2 * k + 1] - kept_a[lo][2 * k + 1]);
+      /* (a+ + a−) ζ^{1/4} Ai + i (a+ − a−) ζ^{−1/4} Ai' */
+      const rb_complex inner = rb_c(sum.re * z4 * ai - diff.im * aip / z4, sum.im * z4 * ai + diff.re * aip / z4);
+      const rb_complex uni = rb_scale(rb_mul(lead, inner), root_pi);
+      /* replace the two rays' plain sum by it */
+      for (int j = 0; j < 2; ++j) {
+        const int m = j ? hi : lo;
+        const REAL ph = kept_phase[m] - RC(1.5707963267948966) * (REAL)kept_f[m];
+        const rb_complex ray = rb_mul(rb_c(kept_a[m][2 * k], kept_a[m][2 * k + 1]), rb_c(cos(ph), sin(ph)));
+        op[2 * k] -= ray.re;
+        op[2 * k + 1] -= ray.im;
+      }
+      op[2 * k] += uni.re;
+      op[2 * k + 1] += uni.im;
     }
   }
 }

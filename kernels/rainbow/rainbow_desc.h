@@ -63,7 +63,8 @@ typedef struct rainbow_patch {
   RAINBOW_INT p;
 } rainbow_patch;
 
-/* The query, by value: its directions' count and the wave number 2π/λ [1/m]. */
+/* The query, by value: its directions' count, the wave number 2π/λ [1/m], and whether
+ * the two rays of a fold caustic are summed by the uniform approximation (query.cl). */
 #define ARCUS_DECLARE_RAINBOW_QUERY(NAME, R, I) \
   typedef struct NAME {                         \
     R wave_number;                              \
@@ -75,6 +76,10 @@ ARCUS_DECLARE_RAINBOW_QUERY(rainbow_query_desc, REAL, int);
 #else
 ARCUS_DECLARE_RAINBOW_QUERY(rainbow_query_desc, double, int32_t);
 #endif
+
+/* A patch corner for the queries: direction (3), the four phasors (8) normalised by
+ * eq. 4.29 and turned by −π/2 per focal line, optical path (1), focal lines (1). */
+#define ARCUS_RAINBOW_CORNER 13
 
 /* Per direction and term: the 8 reals of the summed phasors, then the 4 intensities
  * |E_hθ|², |E_hφ|², |E_vθ|², |E_vφ|² summed without phases. */

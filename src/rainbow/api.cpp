@@ -202,8 +202,12 @@ arcus_status arcus_job_get_rainbow_stats(arcus_job_t* job, arcus_rainbow_stats* 
 arcus_status arcus_job_rainbow_phase(arcus_job_t* job, size_t count, const double* theta_deg, const double* phi_deg,
                                      int32_t coherent, double* parallel, double* perpendicular, double* per_bounce) {
   return on_rainbow_job(job, [&](rainbow::RainbowJob* j) {
+    require(coherent >= 0 && coherent <= 2,
+            "coherent must be 0 (intensities), 1 (phasors, uniform at caustics) or 2 (phasors, eq. 4.31 "
+            "alone), got " + std::to_string(coherent));
     const std::vector<double> dirs = query_directions(*j, count, theta_deg, phi_deg);
-    const rainbow::Phase ph = rainbow::phase(*j, rainbow::query(j->owner(), *j, dirs), coherent != 0);
+    const rainbow::Phase ph =
+        rainbow::phase(*j, rainbow::query(j->owner(), *j, dirs, coherent == 1), coherent != 0);
     copy_out(ph.parallel, parallel);
     copy_out(ph.perpendicular, perpendicular);
     copy_out(ph.per_bounce, per_bounce);
@@ -215,7 +219,7 @@ arcus_status arcus_job_rainbow_phasors(arcus_job_t* job, size_t count, const dou
   return on_rainbow_job(job, [&](rainbow::RainbowJob* j) {
     require_pointer(phasors, "phasors");
     const std::vector<double> dirs = query_directions(*j, count, theta_deg, phi_deg);
-    const std::vector<double> sums = rainbow::query(j->owner(), *j, dirs);
+    const std::vector<double> sums = rainbow::query(j->owner(), *j, dirs, true);
     const size_t per = ARCUS_RAINBOW_QUERY_REALS;
     for (size_t i = 0; i < count * size_t(j->terms); ++i)
       for (int e = 0; e < 8; ++e) phasors[8 * i + e] = sums[per * i + e];

@@ -44,7 +44,7 @@ const KernelSource kCast{"rainbow/cast",
                          ""};
 const KernelSource kQuery{"rainbow/query",
                           {"common/real.h", "bvh/bvh_desc.h", "bvh/traverse.h", "rainbow/rainbow_desc.h",
-                           "rainbow/optics.h", "rainbow/query.cl"},
+                           "rainbow/optics.h", "rainbow/airy.h", "rainbow/query.cl"},
                           ""};
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -426,7 +426,7 @@ std::unique_ptr<RainbowJob> cast(arcus_context_t* ctx, const Particle& particle,
   job->cross_section = scattered * intercepted;
 
   // The corners of kept patches, compacted: direction, normalised phasors turned by
-  // their focal lines, optical path.
+  // their focal lines, optical path, focal lines.
   std::vector<int32_t> compact(size_t(terms) * rays, -1);
   std::vector<double> corners;
   std::vector<rainbow_patch> patches;
@@ -442,7 +442,7 @@ std::unique_ptr<RainbowJob> cast(arcus_context_t* ctx, const Particle& particle,
         for (int k = 0; k < 4; ++k) {
           const size_t key = size_t(p) * rays + c[k];
           if (compact[key] < 0) {
-            compact[key] = static_cast<int32_t>(corners.size() / 12);
+            compact[key] = static_cast<int32_t>(corners.size() / ARCUS_RAINBOW_CORNER);
             const double* q = rec.at(p, c[k]);
             const Corner& cr = corner[key];
             const double scale = std::sqrt((cr.area / cr.cells) / std::max(cr.solid / cr.cells, 1e-300));
@@ -455,6 +455,7 @@ std::unique_ptr<RainbowJob> cast(arcus_context_t* ctx, const Particle& particle,
               corners.push_back(z.imag());
             }
             corners.push_back(q[11]);
+            corners.push_back(q[14]);
             for (int a = 0; a < 3; ++a) chords.positions.push_back(q[a]);
           }
           pt.corner[k] = compact[key];
@@ -496,7 +497,7 @@ std::vector<double> directions(const std::vector<double>& theta_deg, const std::
   return d;
 }
 
-std::vector<double> query(arcus_context_t* ctx, RainbowJob& job, const std::vector<double>& dirs) {
+std::vector<double> query(arcus_context_t* ctx, RainbowJob& job, const std::vector<double>& dirs, bool uniform) {
   const size_t count = dirs.size() / 3;
   std::vector<double> out(count * job.terms * ARCUS_RAINBOW_QUERY_REALS, 0.0);
   if (count == 0 || job.patch_count == 0) return out;
@@ -515,6 +516,7 @@ std::vector<double> query(arcus_context_t* ctx, RainbowJob& job, const std::vect
   q.wave_number = job.wave_number;
   q.count = static_cast<int32_t>(count);
   q.terms = job.terms;
+  q.coherent = uniform ? 1 : 0;
   k.set_value(6, q);
   k.set(7, &out_dev);
   k.run(ctx, count);

@@ -47,8 +47,11 @@ arcus_features cast_features(const Particle& particle);
 std::unique_ptr<RainbowJob> cast(arcus_context_t* ctx, const Particle& particle, const CastParams& params,
                                  arcus_progress_callback progress, void* progress_user, bool* cancelled);
 
-// Per direction (unit, 3 reals each) and term: ARCUS_RAINBOW_QUERY_REALS reals.
-std::vector<double> query(arcus_context_t* ctx, RainbowJob& job, const std::vector<double>& directions);
+// Per direction (unit, 3 reals each) and term: ARCUS_RAINBOW_QUERY_REALS reals.  uniform:
+// the two rays of a fold caustic are summed by the uniform (Airy) approximation
+// (query.cl); otherwise plainly, as eq. 4.31.
+std::vector<double> query(arcus_context_t* ctx, RainbowJob& job, const std::vector<double>& directions,
+                          bool uniform);
 
 // The phase function of eq. 4.32-4.34 for unpolarised light from the query's sums,
 // normalised over p = 0..P (arcus_job_rainbow_phase).

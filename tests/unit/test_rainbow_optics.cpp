@@ -16,6 +16,7 @@
 typedef arcus_bvh_node_d bvh_node;
 #include "bvh/traverse.h"
 #include "rainbow/optics.h"
+#include "rainbow/airy.h"
 #include "rainbow/particle.h"
 
 namespace {
@@ -239,6 +240,31 @@ TEST(RainbowOptics, FocalLinesAlongSphereRays) {
   // rotating the ray about the axis changes nothing
   const Traced turned = trace(d, (b_r - 0.1) * r * std::sqrt(0.5), (b_r - 0.1) * r * std::sqrt(0.5));
   for (int p = 0; p <= 3; ++p) EXPECT_EQ(turned.at(p)[14], inner.at(p)[14]) << p;
+}
+
+// The Airy function on the negative axis (rainbow/airy.h, the uniform approximation's
+// at caustics) against published values (DLMF §9.9, Table 9.9.1): Ai(0), Ai'(0), and
+// the zeros a_k of Ai and a'_k of Ai' on both sides of the series/asymptotic switch at
+// z = 8, where Ai's amplitude is about 0.2-0.5; 1e-9 of that in the series, 1e-7 in the
+// asymptotic expansion (its first term left out).
+TEST(RainbowOptics, AiryFunctionOnTheNegativeAxis) {
+  double ai, aip;
+  rb_airy_negative(0, &ai, &aip);
+  EXPECT_NEAR(ai, 0.355028053887817239, 1e-15);
+  EXPECT_NEAR(aip, -0.258819403792806798, 1e-15);
+  for (const double a : {2.3381074104597674, 4.08794944413097, 5.520559828095515, 7.944133587112781}) {
+    rb_airy_negative(a, &ai, &aip);
+    EXPECT_NEAR(ai, 0, 1e-10) << a;
+  }
+  for (const double a : {9.022650853340979, 12.828776752865757, 14.527829951775335}) {
+    rb_airy_negative(a, &ai, &aip);
+    EXPECT_NEAR(ai, 0, 1e-7) << a;
+  }
+  for (const double a : {1.0187929716474715, 3.2481975821798375, 7.372177255049634, 8.488486734019721,
+                         12.384788371845747}) {
+    rb_airy_negative(a, &ai, &aip);
+    EXPECT_NEAR(aip, 0, a < 8 ? 1e-10 : 1e-7) << a;
+  }
 }
 
 }  // namespace

@@ -46,6 +46,7 @@ MATERIALS = dict(water=0, ice=1, fixed=2)
 PARTICLE_KINDS = {0: "sphere", 1: "raindrop", 2: "mesh"}
 #: The most terms P a cast traces (ARCUS_RAINBOW_MAX_BOUNCES).
 MAX_BOUNCES = 15
+CAUSTICS = dict(uniform="uniform", rays="rays")
 POLARIZATIONS = dict(unpolarized="unpolarized", unpolarised="unpolarized", parallel="parallel",
                      perpendicular="perpendicular")
 
@@ -278,7 +279,7 @@ def _rotation(rotation):
 
 def phase_function(particle, wavelength, theta, phi=None, grid=1000, max_bounces=3, polarization="unpolarized",
                    alpha=0.3, edge_rays=True, material="water", temperature=20.0, refractive_index=None,
-                   rotation=None, coherent=True, context=None, progress=None):
+                   rotation=None, coherent=True, caustics="uniform", context=None, progress=None):
     """The phase function of ``particle`` at ``wavelength`` nm (in air, one value) and
     scattering angles ``theta`` degrees (0 forward, 180 back): a :class:`PhaseResult`.
 
@@ -298,6 +299,10 @@ def phase_function(particle, wavelength, theta, phi=None, grid=1000, max_bounces
         rotation: the particle's orientation, a 3x3 particle -> world rotation.
         coherent: add phasors with their phases (interference, eq. 4.31), or
             intensities (geometric optics).
+        caustics: with ``coherent``, how the two rays of one term that meet at a fold
+            caustic (a rainbow angle) add: "uniform" (the uniform, Airy, approximation of
+            the same two rays: finite, peaking where the wave does) or "rays" (eq. 4.31
+            alone, as the thesis: the intensity peaks at the geometric caustic).
         context: an arcus.Context (else a new one on the default device).
         progress: ``progress(fraction)`` during the cast; returning True cancels it.
     """
@@ -336,6 +341,8 @@ def phase_function(particle, wavelength, theta, phi=None, grid=1000, max_bounces
     params.rotation = (c_double * 9)(*_rotation(rotation))
     params.query_phi_deg = query_phi
     coherent = to_bool(coherent, "coherent")
+    # arcus_job_rainbow_phase's mode: 0 intensities, 1 phasors with the uniform caustics, 2 plain phasors
+    mode = 0 if not coherent else {"uniform": 1, "rays": 2}[to_choice(caustics, "caustics", CAUSTICS)]
     from .context import _check_progress
     _check_progress(progress)
 
@@ -358,7 +365,7 @@ def phase_function(particle, wavelength, theta, phi=None, grid=1000, max_bounces
             count = q_theta.size
             par, perp, per = np.zeros(count), np.zeros(count), np.zeros((count, terms))
             ctx._check(lib.arcus_job_rainbow_phase(
-                job, count, _lib.ptr(q_theta), _lib.ptr(q_phi), int(coherent), _lib.ptr(par), _lib.ptr(perp),
+                job, count, _lib.ptr(q_theta), _lib.ptr(q_phi), mode, _lib.ptr(par), _lib.ptr(perp),
                 _lib.ptr(per)))
             s = _lib.RainbowStatsStruct()
             ctx._check(lib.arcus_job_get_rainbow_stats(job, byref(s)))
