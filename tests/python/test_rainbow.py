@@ -464,3 +464,24 @@ def test_cli_bad_arguments_exit_nonzero(tmp_path, args, message):
     assert r.returncode == 2
     assert message in r.stderr
     assert not (tmp_path / "x.csv").exists()
+
+
+def test_incident_polarisation(ctx):
+    """Eq. 4.32-4.34: any incident polarisation from the four phasors.  The two linear
+    ones average to the unpolarised phase function (to rounding); for a sphere at φ = 0,
+    light polarised in the scattering plane (x) scatters |S2|², so its phase function is
+    twice the "parallel" half of the unpolarised one (cross terms vanish by symmetry;
+    1e-6 of the peak: the patches' interpolation is not exactly symmetric)."""
+    kw = dict(grid=300, context=ctx)
+    x = rainbow.phase_function(rainbow.Sphere(RADIUS), NM, THETA, incident=(1, 0), **kw)
+    y = rainbow.phase_function(rainbow.Sphere(RADIUS), NM, THETA, incident=(0, 1), **kw)
+    np.testing.assert_allclose(0.5 * (x.incident + y.incident), x.unpolarized, rtol=1e-9, atol=1e-15)
+    np.testing.assert_allclose(x.incident, 2 * x.parallel, rtol=0, atol=1e-6 * x.incident.max())
+    np.testing.assert_allclose(y.incident, 2 * y.perpendicular, rtol=0, atol=1e-6 * y.incident.max())
+    circular = rainbow.phase_function(rainbow.Sphere(RADIUS), NM, THETA, incident=(1, 1j), **kw)
+    np.testing.assert_allclose(circular.incident, x.unpolarized, rtol=1e-6, atol=1e-6 * x.incident.max())
+    assert x.incident.shape == THETA.shape
+    with pytest.raises(arcus.ArgumentError, match="incident"):
+        rainbow.phase_function(rainbow.Sphere(RADIUS), NM, THETA, incident=(0, 0), **kw)
+    with pytest.raises(arcus.ArgumentError, match="incident"):
+        rainbow.phase_function(rainbow.Sphere(RADIUS), NM, THETA, incident=(1, 0), coherent=False, **kw)

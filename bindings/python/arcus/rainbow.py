@@ -229,6 +229,8 @@ class PhaseResult:
             patches_rejected, patches_folded, intercepted [m²], scattered (P+1,) and remaining as
             fractions of the intercepted power, seconds per stage) plus total_seconds.
         features: kernel features the cast compiled (e.g. {"RAINBOW_MESH"}).
+        incident: the phase function for the polarised light asked for with
+            ``incident=`` (same shape as ``parallel``), else None.
     """
 
     theta: np.ndarray
@@ -243,6 +245,7 @@ class PhaseResult:
     coherent: bool
     stats: dict
     features: frozenset
+    incident: object = None
 
     @property
     def value(self):
@@ -279,7 +282,7 @@ def _rotation(rotation):
 
 def phase_function(particle, wavelength, theta, phi=None, grid=1000, max_bounces=3, polarization="unpolarized",
                    alpha=0.3, edge_rays=True, material="water", temperature=20.0, refractive_index=None,
-                   rotation=None, coherent=True, caustics="uniform", context=None, progress=None):
+                   rotation=None, coherent=True, caustics="uniform", incident=None, context=None, progress=None):
     """The phase function of ``particle`` at ``wavelength`` nm (in air, one value) and
     scattering angles ``theta`` degrees (0 forward, 180 back): a :class:`PhaseResult`.
 
@@ -303,6 +306,12 @@ def phase_function(particle, wavelength, theta, phi=None, grid=1000, max_bounces
             caustic (a rainbow angle) add: "uniform" (the uniform, Airy, approximation of
             the same two rays: finite, peaking where the wave does) or "rays" (eq. 4.31
             alone, as the thesis: the intensity peaks at the geometric caustic).
+        incident: None, or the incident light's polarisation as two complex
+            amplitudes (I_x, I_y) along x and y (normalised to unit power): then
+            :attr:`PhaseResult.incident` holds the phase function for that light,
+            |I_x E_h + I_y E_v|² over the outgoing frame (eq. 4.32-4.34); (1, 0) is
+            light polarised in the plane φ = 0, (1, 1j) circular.  Needs coherent phasors
+            with the default caustics.
         context: an arcus.Context (else a new one on the default device).
         progress: ``progress(fraction)`` during the cast; returning True cancels it.
     """
@@ -341,6 +350,17 @@ def phase_function(particle, wavelength, theta, phi=None, grid=1000, max_bounces
     params.rotation = (c_double * 9)(*_rotation(rotation))
     params.query_phi_deg = query_phi
     coherent = to_bool(coherent, "coherent")
+    if incident is not None:
+        try:
+            ix, iy = (complex(v) for v in incident)
+        except (TypeError, ValueError):
+            raise ArgumentError("incident must be two complex amplitudes (I_x, I_y), got %r" % (incident,)) from None
+        power = abs(ix) ** 2 + abs(iy) ** 2
+        if not (math.isfinite(power) and power > 0):
+            raise ArgumentError("incident must carry some light (|I_x|² + |I_y|² > 0), got %r" % (incident,))
+        if not coherent or caustics != "uniform":
+            raise ArgumentError("incident needs coherent=True and caustics='uniform'")
+        ix, iy = ix / math.sqrt(power), iy / math.sqrt(power)
     # arcus_job_rainbow_phase's mode: 0 intensities, 1 phasors with the uniform caustics, 2 plain phasors
     mode = 0 if not coherent else {"uniform": 1, "rays": 2}[to_choice(caustics, "caustics", CAUSTICS)]
     from .context import _check_progress
@@ -377,7 +397,17 @@ def phase_function(particle, wavelength, theta, phi=None, grid=1000, max_bounces
             bits = c_uint64()
             ctx._check(lib.arcus_job_get_features(job, byref(bits)))
             par, perp = par.reshape(shape), perp.reshape(shape)
-            return PhaseResult(theta=theta.copy(), phi=phis.copy() if two_d else float(phis[0]), parallel=par,
+            polarised = None
+            if incident is not None:
+                raw = np.zeros(count * terms * 8)
+                ctx._check(lib.arcus_job_rainbow_phasors(job, count, _lib.ptr(q_theta), _lib.ptr(q_phi),
+                                                         _lib.ptr(raw)))
+                e = raw.reshape(count, terms, 4, 2).sum(axis=1)
+                e = e[..., 0] + 1j * e[..., 1]  # E_hθ, E_hφ, E_vθ, E_vφ
+                l_theta, l_phi = ix * e[:, 0] + iy * e[:, 2], ix * e[:, 1] + iy * e[:, 3]
+                cross = s.intercepted * float(np.sum(stats["scattered"]))
+                polarised = ((np.abs(l_theta) ** 2 + np.abs(l_phi) ** 2) / cross).reshape(shape)
+            return PhaseResult(incident=polarised, theta=theta.copy(), phi=phis.copy() if two_d else float(phis[0]), parallel=par,
                                perpendicular=perp, unpolarized=par + perp, per_bounce=per.reshape(shape + (terms,)),
                                polarization=polarization, refractive_index=s.refractive_index, wavelength=wl,
                                coherent=coherent, stats=stats, features=_lib.feature_names(bits.value))
