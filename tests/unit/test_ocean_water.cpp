@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "unit_util.h"
 #include "core/error.h"
 #include "ocean/water.h"
 
@@ -46,19 +47,8 @@ Rows read_csv(const std::string& name, const std::string& header) {
   return rows;
 }
 
-// The error a call throws (status and message), or success.
-struct Failure {
-  arcus_status status = ARCUS_SUCCESS;
-  std::string message;
-};
-Failure failure_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const arcus::Error& e) {
-    return {e.status(), e.what()};
-  }
-  return {};
-}
+using arcus_unit::Failure;
+using arcus_unit::failure_of;
 
 // Composite Simpson of f over [a, b] with n (even) intervals.
 double simpson(const std::function<double(double)>& f, double a, double b, int n) {

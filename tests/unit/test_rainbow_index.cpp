@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "unit_util.h"
 #include "core/error.h"
 #include "rainbow/refractive_index.h"
 
@@ -26,18 +27,8 @@ using namespace arcus::rainbow;
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-struct Failure {
-  arcus_status status = ARCUS_SUCCESS;
-  std::string message;
-};
-Failure failure_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const arcus::Error& e) {
-    return {e.status(), e.what()};
-  }
-  return {};
-}
+using arcus_unit::Failure;
+using arcus_unit::failure_of;
 
 // Fails unless f throws INVALID_ARGUMENT whose message holds every one of `parts`.
 void expect_invalid(const std::function<void()>& f, const std::vector<std::string>& parts) {

@@ -7,14 +7,30 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "arcus/arcus.h"
+#include "core/error.h"
 #include "scoped_env.h"
 
 namespace arcus_unit {
 
 using ::ScopedEnv;
+
+// The error a call throws (status and message), or success.
+struct Failure {
+  arcus_status status = ARCUS_SUCCESS;
+  std::string message;
+};
+inline Failure failure_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const arcus::Error& e) {
+    return {e.status(), e.what()};
+  }
+  return {};
+}
 
 // A fresh directory, removed with its contents at the end of the scope.
 class TempDir {
