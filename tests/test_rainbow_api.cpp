@@ -491,4 +491,69 @@ TEST(RainbowApi, SmoothMeshesActAsTheirSurface) {
   }
 }
 
+// A flat-faced mesh's light is glints (arcus_job_get_rainbow_glints).  A glass cube
+// (n = 1.5) met face-on: the main glint of each term leaves straight back or through
+// with the Fresnel closed forms R = ((n − 1)/(n + 1))² = 0.04, (1 − R)², (1 − R)² R,
+// (1 − R)² R² of its cast area (every one of its rays is the same ray: 1e-12); turned
+// 30° about y: p = 0 leaves at θ = 180° − 60° and p = 1 through the parallel faces
+// at θ = 0 (directions to 1e-12), each with its unpolarised Fresnel product; the glints'
+// books equal the cast's per term (1e-12 relative).
+TEST(RainbowApi, FlatMeshesGiveGlintsWithFresnelPowers) {
+  Ctx c;
+  const std::string path = testing::TempDir() + "arcus_cube.obj";
+  {
+    std::ofstream f(path);
+    for (int v = 0; v < 8; ++v) f << "v " << (v & 1 ? 1 : -1) << " " << (v & 2 ? 1 : -1) << " " << (v & 4 ? 1 : -1) << "\n";
+    // two triangles per face, vertices numbered from 1 (bit 0: x, bit 1: y, bit 2: z)
+    const int faces[6][4] = {{1, 3, 4, 2}, {5, 6, 8, 7}, {1, 2, 6, 5}, {3, 7, 8, 4}, {1, 5, 7, 3}, {2, 4, 8, 6}};
+    for (const auto& q : faces) f << "f " << q[0] << " " << q[1] << " " << q[2] << "\nf " << q[0] << " " << q[2] << " " << q[3] << "\n";
+  }
+  const double n = 1.5, deg30 = kPi / 6;
+  for (const double turn : {0.0, deg30}) {
+    Particle p;
+    ASSERT_EQ(arcus_particle_create_mesh(c.ctx, path.c_str(), 1e-3, 0, &p.p), ARCUS_SUCCESS)
+        << arcus_context_last_error(c.ctx);
+    arcus_rainbow_params params;
+    arcus_rainbow_params_init(&params);
+    params.grid = 64;
+    params.material = ARCUS_MATERIAL_FIXED;
+    params.refractive_index = n;
+    const double cs = std::cos(turn), sn = std::sin(turn);
+    const double rot[9] = {cs, 0, sn, 0, 1, 0, -sn, 0, cs};
+    std::copy(rot, rot + 9, params.rotation);
+    Job j;
+    ASSERT_EQ(arcus_rainbow_cast(c.ctx, p.p, &params, &j.job), ARCUS_SUCCESS) << arcus_context_last_error(c.ctx);
+    size_t count = 0;
+    ASSERT_EQ(arcus_job_get_rainbow_glints(j.job, &count, nullptr, nullptr, nullptr, nullptr), ARCUS_SUCCESS);
+    ASSERT_GT(count, 0u);
+    std::vector<uint32_t> term(count);
+    std::vector<double> dir(3 * count), area(count), cross(count);
+    ASSERT_EQ(arcus_job_get_rainbow_glints(j.job, &count, term.data(), dir.data(), area.data(), cross.data()),
+              ARCUS_SUCCESS);
+    arcus_rainbow_stats s;
+    arcus_job_get_rainbow_stats(j.job, &s);
+    // Fresnel at the entry angle (unpolarised: the mean of s and p powers)
+    const double ci = cs, ct = std::sqrt(1 - sn * sn / (n * n));
+    const double rs = std::pow((ci - n * ct) / (ci + n * ct), 2), rp = std::pow((n * ci - ct) / (n * ci + ct), 2);
+    for (uint32_t q = 0; q <= (turn == 0 ? 3u : 1u); ++q) {
+      size_t main = count;
+      double books = 0;
+      for (size_t g = 0; g < count; ++g) {
+        if (term[g] != q) continue;
+        books += cross[g];
+        if (main == count || area[g] > area[main]) main = g;
+      }
+      ASSERT_LT(main, count) << q;
+      EXPECT_NEAR(books / s.intercepted, s.scattered[q], 1e-12 * s.scattered[q] + 1e-15) << q;
+      // the term's Fresnel product for s and p light, averaged
+      auto product = [&](double r) { return q == 0 ? r : (1 - r) * (1 - r) * std::pow(r, q - 1); };
+      EXPECT_NEAR(cross[main] / area[main], (product(rs) + product(rp)) / 2, 1e-12) << "turn " << turn << " p " << q;
+      const double theta = std::acos(std::clamp(dir[3 * main + 2], -1.0, 1.0)) * 180 / kPi;
+      const double expect = q % 2 == 0 ? 180 - 2 * turn * 180 / kPi : 0;
+      EXPECT_NEAR(theta, expect, 1e-9) << "turn " << turn << " p " << q;
+    }
+  }
+  std::remove(path.c_str());
+}
+
 }  // namespace

@@ -64,8 +64,9 @@ ARCUS_API arcus_status arcus_particle_create_raindrop(arcus_context_t* ctx, doub
  *     the surface's;
  *   smooth = 0: the faces are flat (a crystal).  In one orientation each sequence of
  *     faces sends its light into a single direction, a peak no patch can hold: the
- *     cast's stats give each term's power, the phase function only what falls between
- *     (orientation averaging, which spreads the peaks, is the halo issue's). */
+ *     cast reports these glints (arcus_job_get_rainbow_glints), and the phase function
+ *     holds only what falls between them (averaging over orientations spreads the
+ *     glints into a phase function). */
 ARCUS_API arcus_status arcus_particle_create_mesh(arcus_context_t* ctx, const char* path, double scale,
                                                   int32_t smooth, arcus_particle_t** out);
 ARCUS_API arcus_status arcus_particle_retain(arcus_particle_t* particle);
@@ -139,6 +140,15 @@ ARCUS_API arcus_status arcus_job_rainbow_phase(arcus_job_t* job, size_t count, c
  * holding the direction, unnormalised [count × (P+1) × 8]. */
 ARCUS_API arcus_status arcus_job_rainbow_phasors(arcus_job_t* job, size_t count, const double* theta_deg,
                                                  const double* phi_deg, double* phasors);
+
+/* The glints of a flat-faced mesh (smooth = 0): in one orientation every ray of one
+ * sequence of faces leaves in one direction, so the light of such a particle is a set of
+ * glints rather than a phase function.  Per glint: its term p [count], its direction
+ * (world, unit) [3 × count], the cast area whose rays feed it [m², count] and the power
+ * it carries per unit irradiance, unpolarised [m², count].  Call with NULL arrays to
+ * learn *count (0 for other particles), then with arrays of that size. */
+ARCUS_API arcus_status arcus_job_get_rainbow_glints(arcus_job_t* job, size_t* count, uint32_t* terms,
+                                                    double* directions, double* areas, double* cross_sections);
 
 /* ---- Lorenz–Mie and the Debye series (spheres; host code, no context) ----------- */
 typedef struct arcus_mie_efficiencies {

@@ -214,6 +214,26 @@ arcus_status arcus_job_rainbow_phase(arcus_job_t* job, size_t count, const doubl
   });
 }
 
+arcus_status arcus_job_get_rainbow_glints(arcus_job_t* job, size_t* count, uint32_t* terms, double* directions,
+                                          double* areas, double* cross_sections) {
+  return on_rainbow_job(job, [&](rainbow::RainbowJob* j) {
+    require_pointer(count, "count");
+    const size_t have = j->glints.size();
+    if (terms || directions || areas || cross_sections)
+      require(*count >= have, "count is " + std::to_string(*count) + " but the cast has " + std::to_string(have) +
+                                  " glints: call with NULL arrays first to learn how many");
+    *count = have;
+    for (size_t g = 0; g < have; ++g) {
+      const rainbow::Glint& x = j->glints[g];
+      if (terms) terms[g] = static_cast<uint32_t>(x.p);
+      if (directions)
+        for (int a = 0; a < 3; ++a) directions[3 * g + a] = x.direction[a];
+      if (areas) areas[g] = x.area;
+      if (cross_sections) cross_sections[g] = x.cross_section;
+    }
+  });
+}
+
 arcus_status arcus_job_rainbow_phasors(arcus_job_t* job, size_t count, const double* theta_deg, const double* phi_deg,
                                        double* phasors) {
   return on_rainbow_job(job, [&](rainbow::RainbowJob* j) {

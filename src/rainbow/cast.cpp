@@ -5,6 +5,8 @@
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <map>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -136,6 +138,40 @@ double ray_power(const double* rec) {
   double s = 0;
   for (int c = 3; c < 11; ++c) s += rec[c] * rec[c];
   return s / 2;  // both polarisations, each incident with power 1
+}
+
+// The glints of a flat mesh: per term and sequence of faces, the rays' cast area (each
+// hit cell's area shared among its four corners) and power, and their direction
+// (area-weighted; all equal on flat faces, to rounding).
+std::vector<Glint> glints(const Records& rec, const std::vector<double>& area, const std::vector<double>& left, int n) {
+  std::map<std::pair<int, double>, Glint> by_sequence;
+  const int cells = n - 1;
+  std::vector<double> share(size_t(n) * n, 0.0);
+  for (int j = 0; j < cells; ++j)
+    for (int i = 0; i < cells; ++i) {
+      const int c[4] = {j * n + i, j * n + i + 1, (j + 1) * n + i + 1, (j + 1) * n + i};
+      if (left[c[0]] < 0 || left[c[1]] < 0 || left[c[2]] < 0 || left[c[3]] < 0) continue;
+      for (int k = 0; k < 4; ++k) share[c[k]] += area[size_t(j) * cells + i] / 4;
+    }
+  for (int p = 0; p < rec.terms; ++p)
+    for (int r = 0; r < rec.rays; ++r) {
+      const double* q = rec.at(p, r);
+      if (q[12] != 1 || share[r] == 0) continue;
+      Glint& g = by_sequence[{p, q[13]}];
+      g.p = p;
+      g.area += share[r];
+      g.cross_section += share[r] * ray_power(q);
+      for (int a = 0; a < 3; ++a) g.direction[a] += share[r] * q[a];
+    }
+  std::vector<Glint> out;
+  for (auto& entry : by_sequence) {
+    Glint g = entry.second;
+    const double l = std::sqrt(g.direction[0] * g.direction[0] + g.direction[1] * g.direction[1] +
+                               g.direction[2] * g.direction[2]);
+    for (double& x : g.direction) x /= l;
+    out.push_back(g);
+  }
+  return out;
 }
 
 }  // namespace
@@ -424,6 +460,7 @@ std::unique_ptr<RainbowJob> cast(arcus_context_t* ctx, const Particle& particle,
   double scattered = 0;
   for (int p = 0; p < std::min(terms, 16); ++p) scattered += info.scattered[p];
   job->cross_section = scattered * intercepted;
+  if (particle.kind == ARCUS_RAINBOW_SHAPE_MESH && !particle.smooth) job->glints = glints(rec, area, left, n);
 
   // The corners of kept patches, compacted: direction, normalised phasors turned by
   // their focal lines, optical path, focal lines.

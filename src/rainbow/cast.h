@@ -28,6 +28,16 @@ struct CastParams {
 
 void check_cast(const CastParams& params);
 
+// A flat-faced mesh in one orientation sends all the rays of one sequence of faces
+// into one direction: a glint, which no patch can hold.  Its books: the term, the
+// direction, the cast area whose rays feed it and the power it carries per unit
+// irradiance [m²], unpolarised.
+struct Glint {
+  int p = 0;
+  double direction[3] = {0, 0, 0};
+  double area = 0, cross_section = 0;
+};
+
 struct RainbowJob : arcus_job_s {
   explicit RainbowJob(arcus_context_t* ctx) : arcus_job_s(ctx, "rainbow") {}
   int terms = 0;                 // P + 1
@@ -36,6 +46,7 @@ struct RainbowJob : arcus_job_s {
   arcus_rainbow_stats info{};
   double cross_section = 0;      // the scattered power of p = 0..P per unit irradiance [m²]
   size_t patch_count = 0;
+  std::vector<Glint> glints;     // flat meshes only
   std::unique_ptr<bvh::DeviceBvh> bvh;
   std::unique_ptr<DeviceBuffer> corners, patches;
 };

@@ -485,3 +485,19 @@ def test_incident_polarisation(ctx):
         rainbow.phase_function(rainbow.Sphere(RADIUS), NM, THETA, incident=(0, 0), **kw)
     with pytest.raises(arcus.ArgumentError, match="incident"):
         rainbow.phase_function(rainbow.Sphere(RADIUS), NM, THETA, incident=(1, 0), coherent=False, **kw)
+
+
+def test_flat_meshes_give_glints(ctx, repo):
+    """A flat-faced icosphere in one orientation: its light is glints whose books per term
+    equal the cast's (1e-12 relative) and whose directions are unit vectors; a smooth
+    mesh and a sphere have none."""
+    path = repo / "data" / "meshes" / "icosphere.obj"
+    flat = rainbow.phase_function(rainbow.Mesh(path, scale=1e-3, smooth=False), NM, THETA, grid=200, context=ctx)
+    g = flat.glints
+    assert g is not None and len(g["term"]) > 10
+    np.testing.assert_allclose(np.linalg.norm(g["direction"], axis=1), 1, atol=1e-12)
+    for p in range(flat.max_bounces + 1):
+        books = g["cross_section"][g["term"] == p].sum() / flat.stats["intercepted"]
+        np.testing.assert_allclose(books, flat.stats["scattered"][p], rtol=1e-12)
+    assert rainbow.phase_function(rainbow.Sphere(RADIUS), NM, THETA, grid=64, context=ctx).glints is None
+    assert rainbow.phase_function(rainbow.Mesh(path, scale=1e-3), NM, THETA, grid=64, context=ctx).glints is None

@@ -402,6 +402,7 @@ _PROTOTYPES = {
     "arcus_job_get_rainbow_stats": (_status, [_handle, POINTER(RainbowStatsStruct)]),
     "arcus_job_rainbow_phase": (_status, [_handle, c_size_t, _dvec, _dvec, c_int32, _dvec, _dvec, _dvec]),
     "arcus_job_rainbow_phasors": (_status, [_handle, c_size_t, _dvec, _dvec, _dvec]),
+    "arcus_job_get_rainbow_glints": (_status, [_handle, POINTER(c_size_t), POINTER(c_uint32), _dvec, _dvec, _dvec]),
     "arcus_mie": (
         _status,
         [c_double, c_double, c_double, c_double, c_size_t, _dvec, _dvec, _dvec, _dvec, _dvec,

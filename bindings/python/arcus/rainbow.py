@@ -30,7 +30,7 @@ Lorenz–Mie and its Debye series, the reference for spheres, are in :mod:`arcus
 
 import math
 import weakref
-from ctypes import byref, c_double, c_uint64, c_void_p
+from ctypes import POINTER, byref, c_double, c_size_t, c_uint32, c_uint64, c_void_p
 from dataclasses import dataclass
 
 import numpy as np
@@ -231,6 +231,10 @@ class PhaseResult:
         features: kernel features the cast compiled (e.g. {"RAINBOW_MESH"}).
         incident: the phase function for the polarised light asked for with
             ``incident=`` (same shape as ``parallel``), else None.
+        glints: for a flat-faced Mesh, whose light in one orientation leaves in single
+            directions: a dict of arrays ``term`` (p), ``direction`` (N, 3, unit),
+            ``area`` (the cast area feeding each, m²) and ``cross_section`` (its power per
+            unit irradiance, m²); else None.
     """
 
     theta: np.ndarray
@@ -246,6 +250,7 @@ class PhaseResult:
     stats: dict
     features: frozenset
     incident: object = None
+    glints: object = None
 
     @property
     def value(self):
@@ -407,7 +412,17 @@ def phase_function(particle, wavelength, theta, phi=None, grid=1000, max_bounces
                 l_theta, l_phi = ix * e[:, 0] + iy * e[:, 2], ix * e[:, 1] + iy * e[:, 3]
                 cross = s.intercepted * float(np.sum(stats["scattered"]))
                 polarised = ((np.abs(l_theta) ** 2 + np.abs(l_phi) ** 2) / cross).reshape(shape)
-            return PhaseResult(incident=polarised, theta=theta.copy(), phi=phis.copy() if two_d else float(phis[0]), parallel=par,
+            n_glints = c_size_t(0)
+            ctx._check(lib.arcus_job_get_rainbow_glints(job, byref(n_glints), None, None, None, None))
+            glints = None
+            if n_glints.value:
+                g_term = np.zeros(n_glints.value, dtype=np.uint32)
+                g_dir, g_area, g_cross = np.zeros((n_glints.value, 3)), np.zeros(n_glints.value), np.zeros(n_glints.value)
+                ctx._check(lib.arcus_job_get_rainbow_glints(
+                    job, byref(n_glints), g_term.ctypes.data_as(POINTER(c_uint32)), _lib.ptr(g_dir), _lib.ptr(g_area),
+                    _lib.ptr(g_cross)))
+                glints = dict(term=g_term, direction=g_dir, area=g_area, cross_section=g_cross)
+            return PhaseResult(incident=polarised, glints=glints, theta=theta.copy(), phi=phis.copy() if two_d else float(phis[0]), parallel=par,
                                perpendicular=perp, unpolarized=par + perp, per_bounce=per.reshape(shape + (terms,)),
                                polarization=polarization, refractive_index=s.refractive_index, wavelength=wl,
                                coherent=coherent, stats=stats, features=_lib.feature_names(bits.value))
