@@ -1,5 +1,7 @@
 // The rainbow engine's C API (include/arcus/arcus_rainbow.h): particles, the cast, the
 // collecting sphere's queries, refractive indices and Lorenz–Mie with the Debye series.
+#include <algorithm>
+#include <climits>
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -172,13 +174,10 @@ arcus_status arcus_rainbow_cast(arcus_context_t* ctx, arcus_particle_t* particle
     rainbow::CastParams cp;
     cp.wavelength_nm = params->wavelength_nm;
     cp.n = index_of(params->material, params->wavelength_nm, params->temperature_c, params->refractive_index);
-    require(params->grid <= 8192, "grid must be 4 to 8192 rays per side, got " + std::to_string(params->grid));
-    require(params->max_bounces <= ARCUS_RAINBOW_MAX_BOUNCES,
-            "max_bounces must be 0 to " + std::to_string(ARCUS_RAINBOW_MAX_BOUNCES) + ", got " +
-                std::to_string(params->max_bounces));
-    cp.grid = static_cast<int>(params->grid);
+    // unsigned to int without wrapping; check_cast names what is out of range
+    cp.grid = static_cast<int>(std::min<uint32_t>(params->grid, INT32_MAX));
     cp.alpha = params->alpha;
-    cp.bounces = static_cast<int>(params->max_bounces);
+    cp.bounces = static_cast<int>(std::min<uint32_t>(params->max_bounces, INT32_MAX));
     cp.edge_rays = params->edge_rays != 0;
     for (int i = 0; i < 9; ++i) cp.rotation[i] = params->rotation[i];
     cp.query_phi_deg = params->query_phi_deg;

@@ -248,7 +248,8 @@ std::unique_ptr<RainbowJob> cast(arcus_context_t* ctx, const Particle& particle,
     normals_dev = std::make_unique<DeviceBuffer>(ctx, pl.normals.size() * sizeof(double), "the mesh's vertex normals",
                                                  pl.normals.data());
 
-  // Traces points[first..first+count) into rec/left (host arrays of `total` rays).
+  // Traces the rays at `pts` ((u, v) pairs) into rec and left, in slices; `sliced`: the
+  // caller's progress callback sees them (the grid's pass, not the few edge rays').
   auto trace = [&](const std::vector<double>& pts, Records& rec, std::vector<double>& left, bool sliced) {
     const int total = static_cast<int>(pts.size() / 2);
     rec.rays = total;
