@@ -26,6 +26,9 @@ extern "C" {
  * closed form and compiles neither. */
 #define ARCUS_FEATURE_RAINBOW_IMPLICIT (UINT64_C(1) << 40) /* the raindrop's implicit surface (eq. 4.21) */
 #define ARCUS_FEATURE_RAINBOW_MESH (UINT64_C(1) << 41)     /* triangle meshes through the shared BVH     */
+/* Sky renders: a table that depends on the azimuth too (non-spherical drops, oriented
+ * crystals); a table of spheres or randomly oriented particles compiles without it. */
+#define ARCUS_FEATURE_RAINBOW_AZIMUTH (UINT64_C(1) << 42)
 
 /* ---- refractive index --------------------------------------------------------- */
 typedef enum arcus_material {
@@ -149,6 +152,68 @@ ARCUS_API arcus_status arcus_job_rainbow_phasors(arcus_job_t* job, size_t count,
  * learn *count (0 for other particles), then with arrays of that size. */
 ARCUS_API arcus_status arcus_job_get_rainbow_glints(arcus_job_t* job, size_t* count, uint32_t* terms,
                                                     double* directions, double* areas, double* cross_sections);
+
+/* ---- rainbow skies (thesis §4.1.4, §5.5.2) --------------------------------------- */
+/* The rain's single scattering as a table: the volume scattering function
+ * β(λ, φ, θ) = Σ_sizes N·C_sca·p(θ, φ) [1/(m·sr)] of the drops (or crystals) per unit
+ * volume, and their extinction σ_e(λ) [1/m], in the frame of the rainbow header with the
+ * light along +z and +y the world's up as seen across the light (so φ = 90° is up).
+ *   theta: theta_count ≥ 2 uniform samples from theta_first to theta_last [deg]; β is 0
+ *     outside them (a table of the sky behind the camera need not hold the forward peak)
+ *   phi: phi_count samples at 360°·j/phi_count, periodic; 1: β does not depend on φ
+ *   scattering: [wavelength_count × phi_count × theta_count], θ fastest
+ *   extinction: [wavelength_count] */
+typedef struct arcus_rainbow_table {
+  uint32_t wavelength_count;
+  const double* wavelengths_nm; /* strictly increasing */
+  uint32_t theta_count;
+  double theta_first_deg, theta_last_deg;
+  uint32_t phi_count;
+  const double* scattering;
+  const double* extinction;
+} arcus_rainbow_table;
+
+/* What the camera sees: a box of rain lit by the sun, over a sky and a ground (y = 0).
+ * World frame: y up.  The camera sits at `camera_position` looking along
+ * `camera_forward` with `camera_up` roughly up (a pinhole, horizontal field of view
+ * fov_deg).  The sun is at elevation/azimuth (azimuth from +z toward +x), a disc of
+ * sun_diameter_deg averaged over sun_samples points; its irradiance at each wavelength
+ * [W/(m²·nm)] arrives unattenuated at the box.  Per view ray, the rain's single
+ * scattering is marched (march_steps midpoints across the box, each attenuated toward
+ * the camera and toward the sun by σ_e), then the sky (above the horizon) or the ground
+ * behind it, attenuated through the rain, is added. */
+typedef struct arcus_rainbow_sky {
+  uint32_t width, height;
+  double camera_position[3], camera_forward[3], camera_up[3];
+  double fov_deg;
+  double sun_elevation_deg, sun_azimuth_deg, sun_diameter_deg;
+  uint32_t sun_samples;
+  const double* sun_irradiance; /* [wavelength_count] */
+  const double* sky_radiance;   /* [wavelength_count] W/(m²·sr·nm), NULL: black */
+  const double* ground_radiance;/* [wavelength_count], NULL: black */
+  double rain_min[3], rain_max[3]; /* the box of drops [m] */
+  uint32_t march_steps;
+  double exposure;              /* the PNG's scale; 0: Y's 99.5th percentile → 0.9 */
+  arcus_progress_callback progress;
+  void* progress_user;
+} arcus_rainbow_sky;
+
+/* 320 × 240, camera at 1.7 m looking along +z, 90° field of view, sun at 10° behind the
+ * camera (azimuth 180°), 0.53° wide, 16 samples, no spectra (set them), rain in
+ * x ∈ [−2000, 2000], y ∈ [0, 2000], z ∈ [500, 1500] m, 32 steps, automatic exposure. */
+ARCUS_API arcus_status arcus_rainbow_sky_init(arcus_rainbow_sky* sky);
+/* Renders the sky: an error (with a message) for a table or sky out of range, and for a
+ * sun below the horizon (no rainbow forms from a sun that does not light the rain). */
+ARCUS_API arcus_status arcus_rainbow_render(arcus_context_t* ctx, const arcus_rainbow_table* table,
+                                            const arcus_rainbow_sky* sky, arcus_job_t** job);
+/* The rendered image, top row first: CIE XYZ and linear sRGB (Y = 1 for a flat spectrum
+ * of 1 W/(m²·sr·nm)), 3 floats a pixel each (either may be NULL); the per-pixel
+ * scattering angle θ from the sun's centre [deg] (may be NULL). */
+ARCUS_API arcus_status arcus_job_get_rainbow_image(arcus_job_t* job, uint32_t* width, uint32_t* height,
+                                                   float* xyz, float* rgb, float* theta_deg);
+/* Writes the image: EXR (R, G, B linear, X, Y, Z, theta) and/or an sRGB PNG scaled by
+ * the exposure; either path may be NULL. */
+ARCUS_API arcus_status arcus_job_write_rainbow_image(arcus_job_t* job, const char* exr_path, const char* png_path);
 
 /* ---- Lorenz–Mie and the Debye series (spheres; host code, no context) ----------- */
 typedef struct arcus_mie_efficiencies {

@@ -85,4 +85,27 @@ ARCUS_DECLARE_RAINBOW_QUERY(rainbow_query_desc, double, int32_t);
  * |E_hθ|², |E_hφ|², |E_vθ|², |E_vφ|² summed without phases. */
 #define ARCUS_RAINBOW_QUERY_REALS 12
 
+/* A sky render (sky.cl), by value: the image and camera (a pinhole: the ray through
+ * pixel (i, j) is forward + u·right + v·up with u, v spanning ±half_width, ±half_height),
+ * the sun's direction and the light frame of its centre (light along −sun; +x_light,
+ * +y_light the table's φ = 0° and 90°), the box of rain, the table's θ samples and
+ * sizes, and the slice of pixels this launch does. */
+#define ARCUS_DECLARE_RAINBOW_SKY(NAME, R, I) \
+  typedef struct NAME {                       \
+    R camera[3], forward[3], right[3], up[3]; \
+    R half_width, half_height;                \
+    R sun[3], x_light[3], y_light[3];         \
+    R box_min[3], box_max[3];                 \
+    R theta_first, theta_step; /* degrees */  \
+    I width, height, steps;                   \
+    I wavelengths, thetas, phis;              \
+    I first, count;                           \
+  } NAME
+
+#ifdef __OPENCL_C_VERSION__
+ARCUS_DECLARE_RAINBOW_SKY(rainbow_sky_desc, REAL, int);
+#else
+ARCUS_DECLARE_RAINBOW_SKY(rainbow_sky_desc, double, int32_t);
+#endif
+
 #endif /* ARCUS_RAINBOW_DESC_H */

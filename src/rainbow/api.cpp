@@ -1,4 +1,4 @@
-// The rainbow engine's C API (include/arcus/arcus_rainbow.h): particles, the cast, the
+// The rainbow engine's C API (include/arcus/arcus_rainbow.h): particles, the cast, sky renders, the
 // collecting sphere's queries, refractive indices and Lorenz–Mie with the Debye series.
 #include <algorithm>
 #include <climits>
@@ -12,10 +12,12 @@
 #include "arcus/arcus_rainbow.h"
 #include "core/call.h"
 #include "core/format.h"
+#include "image/image_io.h"
 #include "rainbow/cast.h"
 #include "rainbow/mie.h"
 #include "rainbow/particle.h"
 #include "rainbow/refractive_index.h"
+#include "rainbow/sky.h"
 
 using namespace arcus;
 using namespace arcus::api;
@@ -280,6 +282,76 @@ arcus_status arcus_mie_debye(double radius, double wavelength_nm, double n_re, d
         if (perpendicular) perpendicular[terms * i + p] = ph.perpendicular[i];
       }
     }
+  });
+}
+
+arcus_status arcus_rainbow_sky_init(arcus_rainbow_sky* sky) {
+  return without_context([&] {
+    require_pointer(sky, "sky");
+    *sky = arcus_rainbow_sky{};
+    sky->width = 320;
+    sky->height = 240;
+    sky->camera_position[1] = 1.7;
+    sky->camera_forward[2] = 1;
+    sky->camera_up[1] = 1;
+    sky->fov_deg = 90;
+    sky->sun_elevation_deg = 10;
+    sky->sun_azimuth_deg = 180;
+    sky->sun_diameter_deg = 0.53;
+    sky->sun_samples = 16;
+    const double lo[3] = {-2000, 0, 500}, hi[3] = {2000, 2000, 1500};
+    std::copy(lo, lo + 3, sky->rain_min);
+    std::copy(hi, hi + 3, sky->rain_max);
+    sky->march_steps = 32;
+  });
+}
+
+arcus_status arcus_rainbow_render(arcus_context_t* ctx, const arcus_rainbow_table* table, const arcus_rainbow_sky* sky,
+                                  arcus_job_t** job) {
+  return on<arcus_context_s>(ctx, HandleType::Context, "ctx", [&](arcus_context_s*, std::string* message) {
+    require_pointer(job, "job");
+    *job = nullptr;
+    require_pointer(table, "table");
+    require_pointer(sky, "sky");
+    bool cancelled = false;
+    auto j = rainbow::render_sky(ctx, *table, *sky, &cancelled);
+    arcus::retain_context(ctx);  // the job's reference
+    *job = j.release();
+    if (!cancelled) return ARCUS_SUCCESS;
+    *message = "the progress callback cancelled the render: the image is incomplete";
+    return ARCUS_ERROR_CANCELLED;
+  });
+}
+
+arcus_status arcus_job_get_rainbow_image(arcus_job_t* job, uint32_t* width, uint32_t* height, float* xyz, float* rgb,
+                                         float* theta_deg) {
+  return on_job<rainbow::SkyJob>(job, "a rainbow sky render", [&](rainbow::SkyJob* j) {
+    if (width) *width = j->width;
+    if (height) *height = j->height;
+    copy_out(j->xyz, xyz);
+    copy_out(j->rgb, rgb);
+    copy_out(j->theta, theta_deg);
+  });
+}
+
+arcus_status arcus_job_write_rainbow_image(arcus_job_t* job, const char* exr_path, const char* png_path) {
+  return on_job<rainbow::SkyJob>(job, "a rainbow sky render", [&](rainbow::SkyJob* j) {
+    arcus::image::Image img;
+    img.width = static_cast<int>(j->width);
+    img.height = static_cast<int>(j->height);
+    img.channels = {"R", "G", "B", "X", "Y", "Z", "theta"};
+    const size_t n = size_t(j->width) * j->height;
+    img.pixels.resize(n * img.channels.size());
+    for (size_t p = 0; p < n; ++p) {
+      float* px = &img.pixels[p * img.channels.size()];
+      for (int c = 0; c < 3; ++c) {
+        px[c] = j->rgb[3 * p + c];
+        px[3 + c] = j->xyz[3 * p + c];
+      }
+      px[6] = j->theta[p];
+    }
+    if (exr_path) arcus::image::write_exr(exr_path, img);
+    if (png_path) arcus::image::write_png(png_path, img, j->exposure);
   });
 }
 

@@ -37,7 +37,8 @@ const double kMaxPatchCos = std::cos(60.0 * kPi / 180.0);
 
 const FeatureTable kTable{"rainbow",
                           {{ARCUS_FEATURE_RAINBOW_IMPLICIT, "RAINBOW_IMPLICIT", "-D ARCUS_USE_RAINBOW_IMPLICIT"},
-                           {ARCUS_FEATURE_RAINBOW_MESH, "RAINBOW_MESH", "-D ARCUS_USE_RAINBOW_MESH"}}};
+                           {ARCUS_FEATURE_RAINBOW_MESH, "RAINBOW_MESH", "-D ARCUS_USE_RAINBOW_MESH"},
+                           {ARCUS_FEATURE_RAINBOW_AZIMUTH, "RAINBOW_AZIMUTH", "-D ARCUS_USE_RAINBOW_AZIMUTH"}}};
 const FeatureTableEntry kRegistered(&kTable);
 
 const KernelSource kCast{"rainbow/cast",
