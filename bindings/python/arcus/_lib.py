@@ -272,6 +272,47 @@ class MieEfficienciesStruct(ctypes.Structure):
     _fields_ = [("q_ext", c_double), ("q_sca", c_double), ("q_back", c_double), ("g", c_double)]
 
 
+class RainbowTableStruct(ctypes.Structure):
+    """arcus_rainbow_table."""
+
+    _fields_ = [
+        ("wavelength_count", c_uint32),
+        ("wavelengths_nm", POINTER(c_double)),
+        ("theta_count", c_uint32),
+        ("theta_first_deg", c_double),
+        ("theta_last_deg", c_double),
+        ("phi_count", c_uint32),
+        ("scattering", POINTER(c_double)),
+        ("extinction", POINTER(c_double)),
+    ]
+
+
+class RainbowSkyStruct(ctypes.Structure):
+    """arcus_rainbow_sky."""
+
+    _fields_ = [
+        ("width", c_uint32),
+        ("height", c_uint32),
+        ("camera_position", c_double * 3),
+        ("camera_forward", c_double * 3),
+        ("camera_up", c_double * 3),
+        ("fov_deg", c_double),
+        ("sun_elevation_deg", c_double),
+        ("sun_azimuth_deg", c_double),
+        ("sun_diameter_deg", c_double),
+        ("sun_samples", c_uint32),
+        ("sun_irradiance", POINTER(c_double)),
+        ("sky_radiance", POINTER(c_double)),
+        ("ground_radiance", POINTER(c_double)),
+        ("rain_min", c_double * 3),
+        ("rain_max", c_double * 3),
+        ("march_steps", c_uint32),
+        ("exposure", c_double),
+        ("progress", PROGRESS_CALLBACK),
+        ("progress_user", c_void_p),
+    ]
+
+
 #: void (*arcus_error_callback)(void* user, arcus_status status, const char* message)
 ERROR_CALLBACK = ctypes.CFUNCTYPE(None, c_void_p, c_int, c_char_p)
 
@@ -403,6 +444,12 @@ _PROTOTYPES = {
     "arcus_job_rainbow_phase": (_status, [_handle, c_size_t, _dvec, _dvec, c_int32, _dvec, _dvec, _dvec]),
     "arcus_job_rainbow_phasors": (_status, [_handle, c_size_t, _dvec, _dvec, _dvec]),
     "arcus_job_get_rainbow_glints": (_status, [_handle, POINTER(c_size_t), POINTER(c_uint32), _dvec, _dvec, _dvec]),
+    "arcus_rainbow_sky_init": (_status, [POINTER(RainbowSkyStruct)]),
+    "arcus_rainbow_render": (_status, [_handle, POINTER(RainbowTableStruct), POINTER(RainbowSkyStruct), _out_handle]),
+    "arcus_job_get_rainbow_image": (
+        _status, [_handle, POINTER(c_uint32), POINTER(c_uint32), POINTER(ctypes.c_float), POINTER(ctypes.c_float),
+                  POINTER(ctypes.c_float)]),
+    "arcus_job_write_rainbow_image": (_status, [_handle, c_char_p, c_char_p]),
     "arcus_mie": (
         _status,
         [c_double, c_double, c_double, c_double, c_size_t, _dvec, _dvec, _dvec, _dvec, _dvec,

@@ -448,3 +448,10 @@ def rainbow_angle(n, p=2):
     deviation = 2 * (i - r) + k * (math.pi - 2 * r)  # total turning angle
     theta = math.degrees(deviation) % 360.0
     return 360.0 - theta if theta > 180.0 else theta
+
+
+def render(scene, **options):
+    """Renders a rainbow sky (a scene dict or ``scenes/rainbow/*.json``): an
+    :class:`arcus.sky.SkyImage`.  See :func:`arcus.sky.render` for the options."""
+    from .sky import render as render_sky
+    return render_sky(scene, **options)

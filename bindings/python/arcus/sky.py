@@ -1,0 +1,399 @@
+"""Rainbow skies (thesis §4.1.4, §5.5.2): a box of rain (or ice crystals) lit by the sun,
+rendered by single-scattering ray marching with the particles' phase tables.
+
+A scene (a dict, or a JSON file: ``scenes/rainbow/*.json``) names the image and camera,
+the sun (elevation, azimuth, disc, spectrum, reddening), the rain box with its drop
+populations (one size, a mixture, or a size distribution: Marshall–Palmer or gamma;
+drops above a size take the thesis' raindrop shape) and the background.  The drops'
+phase tables come from :func:`arcus.sweep.phase_tables` (cached on disk, on Dask when
+asked), are summed over the populations into a volume scattering function
+β(λ, φ, θ) = Σ N·C_sca·p and an extinction σ_e(λ) = Σ N·C_ext, and the library renders
+the sky (``arcus_rainbow_render``: the sun's disc, the march, CIE XYZ and sRGB).
+"""
+
+import json
+import math
+import os
+import time
+from ctypes import byref, c_float, c_uint64
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _lib
+from ._args import to_path
+from ._errors import ArgumentError
+from ._lib import lib
+
+__all__ = ["SkyImage", "load_scene", "populations", "volume_table", "render", "light_frame"]
+
+# Hansen & Travis (1974), eq. 2.30 with Bucholtz (1995): the Rayleigh optical depth of the
+# whole atmosphere at sea level, λ in µm; a sun seen through `airmass` atmospheres is
+# attenuated by exp(−airmass·τ_R(λ)).
+def rayleigh_depth(wavelength_nm):
+    lam = np.asarray(wavelength_nm, dtype=float) / 1000.0
+    return 0.008569 * lam**-4 * (1 + 0.0113 * lam**-2 + 0.00013 * lam**-4)
+
+
+def planck(wavelength_nm, temperature_k):
+    """Black-body spectral radiance shape at ``wavelength_nm`` (arbitrary scale)."""
+    lam = np.asarray(wavelength_nm, dtype=float) * 1e-9
+    c2 = 1.438776877e-2  # h·c/k [m·K]
+    return lam**-5 / np.expm1(c2 / (lam * temperature_k))
+
+
+# ---- scene --------------------------------------------------------------------------
+
+
+def _number(d, key, default=None, low=None, high=None, where="scene", positive=False):
+    v = d.get(key, default)
+    if v is None:
+        raise ArgumentError("%s: '%s' is missing" % (where, key))
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+        raise ArgumentError("%s: '%s' must be a finite number, got %r" % (where, key, v))
+    if positive and v <= 0:
+        raise ArgumentError("%s: '%s' must be positive, got %r" % (where, key, v))
+    if (low is not None and v < low) or (high is not None and v > high):
+        raise ArgumentError("%s: '%s' must lie in [%s, %s], got %r" % (where, key, low, high, v))
+    return float(v)
+
+
+def _vector(d, key, default=None, where="scene"):
+    v = d.get(key, default)
+    if v is None or np.shape(v) != (3,) or not np.all(np.isfinite(np.asarray(v, dtype=float))):
+        raise ArgumentError("%s: '%s' must be three finite numbers, got %r" % (where, key, v))
+    return [float(x) for x in v]
+
+
+def load_scene(scene):
+    """A scene dict from a dict or a JSON file path (relative paths in it stay as given)."""
+    if isinstance(scene, dict):
+        return scene
+    path = os.fspath(scene)
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except OSError as e:
+        raise ArgumentError("cannot read the scene %s: %s" % (path, e.strerror)) from None
+    except json.JSONDecodeError as e:
+        raise ArgumentError("the scene %s is not valid JSON: %s" % (path, e)) from None
+
+
+def wavelengths_of(tables):
+    """The table wavelengths [nm] of a scene's ``tables``: [first, last, count] or a list."""
+    w = tables.get("wavelengths", [380, 700, 33])
+    if isinstance(w, list) and len(w) == 3 and isinstance(w[2], int) and w[2] >= 1 and w[2] != w[1]:
+        if w[2] == 1:
+            return np.array([float(w[0])])
+        grid = np.linspace(float(w[0]), float(w[1]), w[2])
+    else:
+        grid = np.asarray(w, dtype=float).ravel()
+    if grid.size == 0 or not np.all(np.isfinite(grid)) or np.any(np.diff(grid) <= 0) or grid[0] <= 0:
+        raise ArgumentError("tables: 'wavelengths' must be [first, last, count] or strictly increasing "
+                            "positive numbers (nm), got %r" % (w,))
+    return grid
+
+
+def theta_of(tables):
+    """The table's uniform θ samples [deg] from ``tables.theta`` = [first, last, step]."""
+    t = tables.get("theta", [100.0, 180.0, 0.05])
+    if not (isinstance(t, list) and len(t) == 3 and all(isinstance(x, (int, float)) for x in t)):
+        raise ArgumentError("tables: 'theta' must be [first, last, step] in degrees, got %r" % (t,))
+    first, last, step = map(float, t)
+    if not (0 <= first < last <= 180 and step > 0):
+        raise ArgumentError("tables: 'theta' must satisfy 0 <= first < last <= 180 and step > 0, got %r" % (t,))
+    n = int(round((last - first) / step)) + 1
+    return np.linspace(first, last, n)
+
+
+def light_frame(sun_elevation_deg, sun_azimuth_deg):
+    """The light frame of the sun's centre as rows (x, y, z) in the world (y up, azimuth
+    from +z toward +x): z along the light (−sun), y the world's up across the light,
+    x = y × z.  Phase tables use it: φ = 0° along x, 90° along y (up)."""
+    e, a = math.radians(sun_elevation_deg), math.radians(sun_azimuth_deg)
+    sun = np.array([math.cos(e) * math.sin(a), math.sin(e), math.cos(e) * math.cos(a)])
+    z = -sun
+    up = np.array([0.0, 1.0, 0.0])
+    y = up - up.dot(z) * z
+    y = y / np.linalg.norm(y) if np.linalg.norm(y) > 1e-12 else np.array([0.0, 0.0, 1.0])
+    return np.array([np.cross(y, z), y, z])
+
+
+def upright_rotation(sun_elevation_deg, sun_azimuth_deg=180.0):
+    """The particle → light-frame rotation of a particle standing upright (its own y along
+    the world's up: a falling raindrop) under a sun at that elevation."""
+    frame = light_frame(sun_elevation_deg, sun_azimuth_deg)
+    px = frame[0]                     # horizontal, across the light
+    py = np.array([0.0, 1.0, 0.0])
+    pz = np.cross(px, py)
+    return frame @ np.array([px, py, pz]).T  # R[r, c] = light_r · particle_c
+
+
+def _gauss_bins(lo, hi, count):
+    x, w = np.polynomial.legendre.leggauss(count)
+    return (lo + hi) / 2 + (hi - lo) / 2 * x, (hi - lo) / 2 * w
+
+
+def populations(rain, sun_elevation_deg):
+    """The rain's populations as (particle spec, number density [1/m³]) pairs: one size,
+    or a size distribution in Gauss–Legendre bins (``bins``).  Specs are those of
+    :func:`arcus.sweep.phase_tables`."""
+    pops = rain.get("populations")
+    if not isinstance(pops, list) or not pops:
+        raise ArgumentError("rain: 'populations' must be a non-empty list of drop populations")
+    out = []
+    for i, p in enumerate(pops):
+        where = "rain.populations[%d]" % i
+        if not isinstance(p, dict):
+            raise ArgumentError("%s must be an object, got %r" % (where, p))
+        shape = p.get("shape", "sphere")
+        if shape == "crystal":
+            spec = {"kind": "crystal", "shape": p.get("crystal", "column"),
+                    "size": _number(p, "size", where=where, positive=True),
+                    "orientation": p.get("orientation", "random"), "tilt_deg": _number(p, "tilt_deg", 1.0, 0, 90, where),
+                    "sun_elevation_deg": sun_elevation_deg,
+                    "orientations": int(_number(p, "orientations", 2000, 1, 1e7, where)),
+                    "seed": int(_number(p, "seed", 1, 0, 2**31, where))}
+            out.append((spec, _number(p, "density", where=where, low=0)))
+            continue
+        dist = p.get("distribution")
+        if dist is None:
+            if shape == "sphere":
+                radius = _number(p, "radius", where=where, positive=True)
+                sizes = [(2 * radius, _number(p, "density", where=where, low=0))]
+            elif shape == "raindrop":
+                sizes = [(_number(p, "diameter", where=where, positive=True), _number(p, "density", where=where, low=0))]
+            else:
+                raise ArgumentError("%s: 'shape' must be sphere, raindrop or crystal, got %r" % (where, shape))
+        else:
+            bins = int(_number(p, "bins", 6, 1, 200, where))
+            if dist == "marshall_palmer":
+                # Marshall & Palmer (1948): N(D) = 8000 exp(−Λ D) per m³ per mm,
+                # Λ = 4.1 R^−0.21 per mm for a rain rate R in mm/h.
+                rate = _number(p, "rain_rate_mm_h", where=where, positive=True)
+                lo, hi = p.get("diameter_range_mm", [0.5, 3.0])
+                lam = 4.1 * rate**-0.21
+                d_mm, w = _gauss_bins(float(lo), float(hi), bins)
+                dens = 8000.0 * np.exp(-lam * d_mm) * w
+                sizes = list(zip(d_mm * 1e-3, dens))
+            elif dist == "gamma":
+                # n(r) ∝ r^μ exp(−μ r / r_mode) (peaks at r_mode), scaled to total_density
+                # over radius_range.
+                mode = _number(p, "mode_radius", where=where, positive=True)
+                mu = _number(p, "mu", 6.0, 0, 100, where)
+                total = _number(p, "total_density", where=where, low=0)
+                lo, hi = p.get("radius_range", [mode / 4, mode * 3])
+                r, w = _gauss_bins(float(lo), float(hi), bins)
+                n = r**mu * np.exp(-mu * r / mode) * w
+                sizes = list(zip(2 * r, total * n / n.sum()))
+            else:
+                raise ArgumentError("%s: 'distribution' must be marshall_palmer or gamma, got %r" % (where, dist))
+            if not sizes or float(lo) >= float(hi) or float(lo) <= 0:
+                raise ArgumentError("%s: the size range must be positive and increasing, got %r" % (where, [lo, hi]))
+        above = p.get("nonspherical_above_mm", 1.0 if shape == "sphere" and dist else None)
+        for diameter, density in sizes:
+            if density < 0 or not math.isfinite(density):
+                raise ArgumentError("%s: number density must be finite and >= 0, got %r" % (where, density))
+            raindrop = shape == "raindrop" or (above is not None and diameter * 1e3 >= float(above))
+            if raindrop:
+                spec = {"kind": "raindrop", "diameter": float(diameter),
+                        "rotation": upright_rotation(sun_elevation_deg).tolist()}
+            else:
+                spec = {"kind": "sphere", "radius": float(diameter / 2), "method": p.get("method", "rays")}
+            out.append((spec, float(density)))
+    if sum(d for _, d in out) <= 0:
+        raise ArgumentError("rain: the populations hold no drops (every number density is 0)")
+    return out
+
+
+def _needs_azimuth(spec):
+    return spec["kind"] in ("raindrop", "mesh") or (spec["kind"] == "crystal" and spec["orientation"] != "random")
+
+
+@dataclass(frozen=True, eq=False)
+class VolumeTable:
+    """The rain's volume scattering function: ``beta`` (L, F, T) [1/(m·sr)] at
+    ``wavelengths`` (L,), ``phi`` (F,) = 360°·j/F and ``theta`` (T,) [deg], its
+    ``extinction`` (L,) [1/m], and the sweep's task counts (``computed``, ``cached``)."""
+
+    wavelengths: np.ndarray
+    theta: np.ndarray
+    phi: np.ndarray
+    beta: np.ndarray
+    extinction: np.ndarray
+    computed: int
+    cached: int
+    seconds: float
+
+
+def volume_table(scene, *, cache_dir=None, client="serial", workers=None, progress=False):
+    """Sums the populations' phase tables (from :func:`arcus.sweep.phase_tables`) into the
+    rain's :class:`VolumeTable`."""
+    from . import sweep
+
+    scene = load_scene(scene)
+    tables = scene.get("tables", {})
+    sun = scene.get("sun", {})
+    elevation = _number(sun, "elevation_deg", 10.0, where="sun")
+    pops = populations(scene.get("rain", {}), elevation)
+    wl, theta = wavelengths_of(tables), theta_of(tables)
+    azimuth = any(_needs_azimuth(s) for s, _ in pops)
+    phi = None
+    if azimuth:
+        step = _number(tables, "phi_step_deg", 5.0, where="tables", positive=True)
+        phi = np.arange(0.0, 360.0 - 1e-9, step)
+    t0 = time.perf_counter()
+    options = dict(grid=int(_number(tables, "grid", 1000, 4, 8192, "tables")),
+                   max_bounces=int(_number(tables, "max_bounces", 3, 0, 15, "tables")),
+                   cache_dir=cache_dir, client=client, workers=workers, progress=progress)
+    # Particles that look the same from every azimuth (spheres, random orientations) get
+    # 1-D tables, far cheaper than the 2-D ones of the rest; both are summed over φ × θ.
+    beta = np.zeros((wl.size, 1 if phi is None else phi.size, theta.size))
+    extinction = np.zeros(wl.size)
+    computed = cached = 0
+    for two_d in (False, True):
+        group = [(s, d) for s, d in pops if _needs_azimuth(s) == two_d]
+        if not group:
+            continue
+        pt = sweep.phase_tables([s for s, _ in group], wl, theta, phi if two_d else None, **options)
+        density = np.array([d for _, d in group])
+        phase = np.asarray(pt.phase, dtype=float)
+        if phase.ndim == 3:  # (N, L, T): the same at every φ
+            phase = phase[:, :, None, :]
+        beta += np.einsum("n,nl,nlft->lft", density, np.asarray(pt.cross_section), phase)
+        extinction += np.asarray(pt.extinction).T @ density
+        computed += pt.computed
+        cached += pt.cached
+    return VolumeTable(wavelengths=wl, theta=theta, phi=np.array([0.0]) if phi is None else phi,
+                       beta=np.ascontiguousarray(beta), extinction=extinction, computed=computed, cached=cached,
+                       seconds=time.perf_counter() - t0)
+
+
+def _spectrum(spec, wl, where, default_radiance):
+    """A background spectrum: {"spectrum": "flat"|"rayleigh", "radiance": R} (rayleigh:
+    λ^−4 scaled to mean R over the table's wavelengths)."""
+    if spec is None:
+        return np.zeros_like(wl)
+    if not isinstance(spec, dict):
+        raise ArgumentError("%s must be an object, got %r" % (where, spec))
+    value = _number(spec, "radiance", default_radiance, low=0, where=where)
+    kind = spec.get("spectrum", "flat")
+    if kind == "flat":
+        return np.full_like(wl, value)
+    if kind == "rayleigh":
+        shape = rayleigh_depth(wl)
+        return value * shape / shape.mean()
+    raise ArgumentError("%s: 'spectrum' must be flat or rayleigh, got %r" % (where, kind))
+
+
+def sun_spectrum(sun, wl):
+    """The sun's irradiance at the rain [W/(m²·nm)]: a black body (``temperature_k``,
+    5778 K) or flat, scaled to mean ``irradiance`` over the wavelengths, then reddened by
+    ``airmass`` atmospheres of Rayleigh scattering (Fig. 5.23(a)'s red sun)."""
+    kind = sun.get("spectrum", "blackbody")
+    if kind == "blackbody":
+        shape = planck(wl, _number(sun, "temperature_k", 5778.0, where="sun", positive=True))
+    elif kind == "flat":
+        shape = np.ones_like(wl)
+    else:
+        raise ArgumentError("sun: 'spectrum' must be blackbody or flat, got %r" % (kind,))
+    e = _number(sun, "irradiance", 1.0, low=0, where="sun") * shape / shape.mean()
+    return e * np.exp(-_number(sun, "airmass", 0.0, low=0, where="sun") * rayleigh_depth(wl))
+
+
+@dataclass(frozen=True, eq=False)
+class SkyImage:
+    """A rendered sky: ``image`` (H, W, 3) linear sRGB, ``xyz`` (H, W, 3), ``theta``
+    (H, W) the scattering angle from the sun's centre [deg], the :class:`VolumeTable`
+    rendered, ``features`` compiled and ``seconds`` (table, render)."""
+
+    image: np.ndarray
+    xyz: np.ndarray
+    theta: np.ndarray
+    table: VolumeTable
+    features: frozenset
+    seconds: dict
+
+
+def render(scene, *, exr=None, png=None, table=None, width=None, height=None, sun_samples=None, march_steps=None,
+           cache_dir=None, client="serial", workers=None, progress=None, context=None):
+    """Renders a rainbow scene (dict or JSON path): a :class:`SkyImage`; writes ``exr``
+    (R, G, B linear, X, Y, Z, theta) and ``png`` (sRGB) if given.  ``table`` reuses a
+    :class:`VolumeTable`; ``width``, ``height``, ``sun_samples`` and ``march_steps``
+    override the scene's.  Phase tables come from the sweep cache (``cache_dir``),
+    computed where missing, here (``client="serial"``) or on a Dask client/address."""
+    from .rainbow import _context
+
+    scene = load_scene(scene)
+    img, cam, sun, rain = (scene.get(k, {}) for k in ("image", "camera", "sun", "rain"))
+    for name, part in (("image", img), ("camera", cam), ("sun", sun), ("rain", rain)):
+        if not isinstance(part, dict):
+            raise ArgumentError("scene: '%s' must be an object" % name)
+    # Checked before any table is computed (the library checks it again for C callers).
+    if _number(sun, "elevation_deg", 10.0, where="sun") < 0:
+        raise ArgumentError("sun: the sun is below the horizon (elevation_deg %g): it lights no rain in front "
+                            "of the camera, so no rainbow forms; raise it to 0 or above" % sun["elevation_deg"])
+    if table is None:
+        table = volume_table(scene, cache_dir=cache_dir, client=client, workers=workers,
+                             progress=progress is not None)
+    wl = table.wavelengths
+    sky = _lib.RainbowSkyStruct()
+    _lib.check(lib.arcus_rainbow_sky_init(byref(sky)))
+    sky.width = int(width or _number(img, "width", 800, 1, 16384, "image"))
+    sky.height = int(height or _number(img, "height", 600, 1, 16384, "image"))
+    sky.fov_deg = _number(img, "fov_deg", 90.0, where="image")
+    sky.exposure = _number(img, "exposure", 0.0, low=0, where="image")
+    pos = _vector(cam, "position", [0.0, 1.7, 0.0], "camera")
+    look_a = math.radians(_number(cam, "look_azimuth_deg", 0.0, where="camera"))
+    look_e = math.radians(_number(cam, "look_elevation_deg", 20.0, -89, 89, "camera"))
+    forward = [math.cos(look_e) * math.sin(look_a), math.sin(look_e), math.cos(look_e) * math.cos(look_a)]
+    for i in range(3):
+        sky.camera_position[i], sky.camera_forward[i], sky.camera_up[i] = pos[i], forward[i], (0.0, 1.0, 0.0)[i]
+    sky.sun_elevation_deg = _number(sun, "elevation_deg", 10.0, where="sun")
+    sky.sun_azimuth_deg = _number(sun, "azimuth_deg", 180.0, where="sun")
+    sky.sun_diameter_deg = _number(sun, "diameter_deg", 0.53, where="sun")
+    sky.sun_samples = int(sun_samples or _number(sun, "samples", 16, 1, 4096, "sun"))
+    lo, hi = _vector(rain, "box_min", None, "rain"), _vector(rain, "box_max", None, "rain")
+    for i in range(3):
+        sky.rain_min[i], sky.rain_max[i] = lo[i], hi[i]
+    sky.march_steps = int(march_steps or _number(rain, "march_steps", 32, 1, 100000, "rain"))
+    background = scene.get("background", {})
+    sun_e = sun_spectrum(sun, wl)
+    sky_l = _spectrum(background.get("sky"), wl, "background.sky", 0.0)
+    ground_l = _spectrum(background.get("ground"), wl, "background.ground", 0.0)
+    sky.sun_irradiance, sky.sky_radiance, sky.ground_radiance = _lib.ptr(sun_e), _lib.ptr(sky_l), _lib.ptr(ground_l)
+    from .context import _check_progress
+    _check_progress(progress)
+
+    beta = np.ascontiguousarray(table.beta, dtype=float)
+    ext = np.ascontiguousarray(table.extinction, dtype=float)
+    wl_c = np.ascontiguousarray(wl, dtype=float)
+    t = _lib.RainbowTableStruct(len(wl_c), _lib.ptr(wl_c), len(table.theta), float(table.theta[0]),
+                                float(table.theta[-1]), len(table.phi), _lib.ptr(beta), _lib.ptr(ext))
+    ctx, owned = _context(context)
+    try:
+        t0 = time.perf_counter()
+
+        def start(callback, job_out):
+            sky.progress = callback
+            return lib.arcus_rainbow_render(ctx._handle, byref(t), byref(sky), job_out)
+
+        def read(job):
+            w, h = sky.width, sky.height
+            xyz, rgb = np.empty((h, w, 3), np.float32), np.empty((h, w, 3), np.float32)
+            th = np.empty((h, w), np.float32)
+            ctx._check(lib.arcus_job_get_rainbow_image(job, None, None, _lib.ptr(xyz, c_float),
+                                                       _lib.ptr(rgb, c_float), _lib.ptr(th, c_float)))
+            if exr is not None or png is not None:
+                ctx._check(lib.arcus_job_write_rainbow_image(job, None if exr is None else to_path(exr, "exr"),
+                                                             None if png is None else to_path(png, "png")))
+            bits = c_uint64()
+            ctx._check(lib.arcus_job_get_features(job, byref(bits)))
+            return xyz, rgb, th, _lib.feature_names(bits.value)
+
+        xyz, rgb, th, features = ctx._run_job(start, progress, False, "arcus_rainbow_render", reader=read)
+        seconds = {"table": table.seconds, "render": time.perf_counter() - t0}
+    finally:
+        if owned:
+            ctx.close()
+    return SkyImage(image=rgb, xyz=xyz, theta=th, table=table, features=features, seconds=seconds)

@@ -1,0 +1,196 @@
+"""arcus.rainbow.render / arcus.sky and apps/rainbow/arcus_rainbow_render.py: a rendered
+bow against its own phase table (the brightest red row where the table's red peaks, to
+the pixel), Alexander's dark band, the secondary's reversed colours, the volume table's
+energy against the drops' cross-sections, size distributions, and bad input (explained,
+not crashed).  Small tables (8 wavelengths, grid 300) keep it to seconds on two cores."""
+
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import arcus
+import arcus.mie as mie
+from arcus import sky
+
+TOOL = Path(__file__).resolve().parents[2] / "apps" / "rainbow" / "arcus_rainbow_render.py"
+SCENES = Path(__file__).resolve().parents[2] / "scenes" / "rainbow"
+WIDTH, HEIGHT, SPAN = 41, 401, 40.0  # a strip of 40° up the sky, 0.1° a row
+
+
+def strip_scene(populations, **tables):
+    """Looking 46° up at the top of the bows with the sun on the horizon behind: rows
+    run over scattering angles 180° − (26°…66°) (≈ 114°…154°), one row ≈ 0.1°."""
+    half_width = math.tan(math.radians(SPAN / 2)) * WIDTH / HEIGHT
+    return {
+        "image": {"width": WIDTH, "height": HEIGHT, "fov_deg": 2 * math.degrees(math.atan(half_width)),
+                  "exposure": 1},
+        "camera": {"position": [0, 1.7, 0], "look_azimuth_deg": 0, "look_elevation_deg": 46},
+        "sun": {"elevation_deg": 0, "azimuth_deg": 180, "diameter_deg": 0, "samples": 1, "spectrum": "flat"},
+        "rain": {"box_min": [-5000, 0, 200], "box_max": [5000, 5000, 1200], "march_steps": 64,
+                 "populations": populations},
+        "background": {"sky": {"radiance": 0.0}, "ground": {"radiance": 0.0}},
+        "tables": dict({"wavelengths": [400, 700, 8], "theta": [100, 180, 0.05], "grid": 300, "max_bounces": 3},
+                       **tables),
+    }
+
+
+DROPS = [{"shape": "sphere", "radius": 5e-4, "density": 300, "method": "rays"}]
+
+
+@pytest.fixture(scope="module")
+def bows(ctx, tmp_path_factory):
+    """The 500 µm bows rendered down the strip, and the table they were rendered with."""
+    return sky.render(strip_scene(DROPS), cache_dir=tmp_path_factory.mktemp("tables"), context=ctx)
+
+
+def column(result):
+    """The centre column (through the antisolar point): θ, linear R, G, B and Y."""
+    c = WIDTH // 2
+    return result.theta[:, c].astype(float), result.image[:, c, :].astype(float), result.xyz[:, c, 1].astype(float)
+
+
+def table_rgb(result, theta):
+    """The table's own colour at angles θ: Σ_λ E(λ)·β(λ, θ)·w(λ) through the same
+    XYZ → linear sRGB matrix (IEC 61966-2-1), with the CIE band weights recomputed here
+    from the 1931 functions by trapezoids (independent of the library's weights)."""
+    t = result.table
+    beta = np.array([np.interp(theta, t.theta, t.beta[l, 0]) for l in range(t.wavelengths.size)])  # (L, rows)
+    cmf = np.loadtxt(Path(__file__).resolve().parents[2] / "data" / "spectra" / "cie1931_2deg_5nm.csv",
+                     delimiter=",", skiprows=1)
+    xyz = np.array([np.interp(t.wavelengths, cmf[:, 0], cmf[:, k]) for k in (1, 2, 3)])  # (3, L)
+    m = np.array([[3.2406, -1.5372, -0.4986], [-0.9689, 1.8758, 0.0415], [0.0557, -0.2040, 1.0570]])
+    return (m @ xyz @ beta).T  # (rows, 3), up to a common scale
+
+
+def test_red_edge_of_the_primary_sits_where_the_table_puts_it(bows):
+    # The brightest red row of the primary (θ 134°-142°) against the angle where the
+    # table's red peaks, sampled at the rows' own θ: the march's attenuation varies by
+    # < 1 % across the bow (the rain box is wide), far too little to move a peak whose
+    # width is ~1°, so they must agree to the pixel (0.1°).
+    theta, rgb, _ = column(bows)
+    band = (theta > 134) & (theta < 142)
+    row_image = np.flatnonzero(band)[np.argmax(rgb[band, 0])]
+    expected = table_rgb(bows, theta[band])[:, 0]
+    row_table = np.flatnonzero(band)[np.argmax(expected)]
+    assert abs(int(row_image) - int(row_table)) <= 1, (theta[row_image], theta[row_table])
+    # and that angle is the primary bow of water near 650 nm (eq. 4.20 gives 137.7°-138°
+    # for the red end; interference moves the maximum inside by a few tenths)
+    assert 137.0 < theta[row_image] < 139.0
+
+
+def test_alexanders_dark_band_is_darker_than_both_sides(bows):
+    theta, _, y = column(bows)
+    band = y[(theta > 131) & (theta < 136.5)].mean()      # between the bows
+    inside = y[(theta > 140) & (theta < 150)].mean()      # inside the primary
+    outside = y[(theta > 116) & (theta < 126)].mean()     # outside the secondary
+    assert band < 0.5 * inside and band < 0.9 * outside, (band, inside, outside)
+
+
+def test_the_secondarys_colours_are_reversed(bows):
+    # Primary: red outside (smaller θ), blue inside.  Secondary (p = 3): the reverse.
+    theta, rgb, _ = column(bows)
+
+    def peak(lo, hi, channel):
+        sel = (theta > lo) & (theta < hi)
+        return theta[sel][np.argmax(rgb[sel, channel])]
+
+    assert peak(134, 142, 0) < peak(134, 142, 2)
+    assert peak(123, 132, 0) > peak(123, 132, 2)
+
+
+def test_volume_table_conserves_energy(tmp_path):
+    # White sun, non-absorbing drops: the light the rain scatters, ∫ β dΩ over the whole
+    # sphere, equals what the drops take out of the beam, N·C_sca, per wavelength.
+    # Mie: C_sca = Q_sca·πa² (from the efficiencies, not from the phase function).  The
+    # 0.01° quadrature of the 50 µm drop's forward peak (width ~λ/2a ≈ 0.3°) is good to
+    # well below 0.5 %.
+    scene = strip_scene([{"shape": "sphere", "radius": 5e-5, "density": 1e5, "method": "mie"}],
+                        theta=[0, 180, 0.01], wavelengths=[450, 650, 3])
+    table = sky.volume_table(scene, cache_dir=tmp_path)
+    th = np.radians(table.theta)
+    for l, nm in enumerate(table.wavelengths):
+        scattered = 2 * math.pi * np.trapezoid(table.beta[l, 0] * np.sin(th), th)
+        m = mie.phase_function(5e-5, nm, [90.0])
+        assert scattered == pytest.approx(1e5 * m.q_sca * math.pi * 5e-5**2, rel=5e-3)
+        assert table.extinction[l] == pytest.approx(1e5 * m.q_ext * math.pi * 5e-5**2, rel=1e-12)
+
+
+def test_ray_tables_scatter_what_the_drops_intercept(tmp_path):
+    # Rays: every term p ≤ 15 of a non-absorbing drop leaves it, so ∫ β dΩ = N·πa²·(1 −
+    # remaining) with remaining < 1e-3: the sky's scattered light is the sun's light the
+    # drops intercept.  Integrated by the 0.02° trapezoid rule over a coherent table whose
+    # fringes (~0.1° at 500 µm) it resolves; 2 % covers the caustics' spikes.
+    scene = strip_scene([{"shape": "sphere", "radius": 5e-4, "density": 10, "method": "rays"}],
+                        theta=[0, 180, 0.02], wavelengths=[550, 650, 2], max_bounces=15, grid=400)
+    table = sky.volume_table(scene, cache_dir=tmp_path)
+    th = np.radians(table.theta)
+    for l in range(table.wavelengths.size):
+        scattered = 2 * math.pi * np.trapezoid(table.beta[l, 0] * np.sin(th), th)
+        assert scattered == pytest.approx(10 * math.pi * 5e-4**2, rel=2e-2)
+
+
+def test_marshall_palmer_bins_hold_the_rain_rate_s_drops():
+    # Marshall & Palmer: ∫ N0 e^{−ΛD} dD over [a, b] in closed form, Λ = 4.1 R^−0.21.
+    pops = sky.populations({"populations": [{"shape": "sphere", "distribution": "marshall_palmer",
+                                             "rain_rate_mm_h": 5, "diameter_range_mm": [0.4, 1.6], "bins": 6,
+                                             "nonspherical_above_mm": 1.0}]}, 10.0)
+    lam = 4.1 * 5**-0.21
+    exact = 8000 / lam * (math.exp(-lam * 0.4) - math.exp(-lam * 1.6))
+    assert sum(d for _, d in pops) == pytest.approx(exact, rel=1e-9)
+    kinds = {s["kind"] for s, _ in pops}
+    assert kinds == {"sphere", "raindrop"}  # the bigger bins take the falling drop's shape
+    for s, _ in pops:
+        if s["kind"] == "raindrop":
+            assert s["diameter"] >= 1e-3
+            r = np.array(s["rotation"])
+            assert np.allclose(r @ r.T, np.eye(3), atol=1e-12) and np.linalg.det(r) == pytest.approx(1)
+
+
+@pytest.mark.parametrize("change, words", [
+    (lambda s: s["rain"].update(populations=[]), "non-empty list"),
+    (lambda s: s["rain"]["populations"][0].update(density=-1), "density"),
+    (lambda s: s["sun"].update(elevation_deg=-2), "below the horizon"),
+    (lambda s: s["tables"].update(wavelengths=[150, 700, 4]), "wavelength"),
+    (lambda s: s["rain"].update(box_min=[0, 0]), "box_min"),
+    (lambda s: s["rain"]["populations"][0].update(shape="cube"), "shape"),
+    (lambda s: s["rain"]["populations"][0].update(distribution="weibull", bins=3), "distribution"),
+])
+def test_bad_scenes_are_explained(ctx, tmp_path, change, words):
+    scene = strip_scene([dict(DROPS[0])])
+    scene["image"].update(width=3, height=3)
+    change(scene)
+    with pytest.raises(arcus.Error) as err:
+        sky.render(scene, cache_dir=tmp_path, context=ctx)
+    assert words in str(err.value)
+
+
+def test_bundled_scenes_parse():
+    # Every bundled scene names valid populations (no tables are computed here).
+    for path in sorted(SCENES.glob("*.json")):
+        scene = sky.load_scene(path)
+        assert sky.populations(scene["rain"], scene["sun"]["elevation_deg"]), path
+        assert sky.wavelengths_of(scene["tables"]).size >= 33, path  # the issue's ≥ 33 wavelengths
+
+
+def test_command_line_writes_images_and_explains_errors(tmp_path):
+    import json
+    scene = strip_scene([{"shape": "sphere", "radius": 2e-4, "density": 300, "method": "mie"}])
+    scene["image"].update(width=16, height=12)
+    path = tmp_path / "scene.json"
+    path.write_text(json.dumps(scene))
+    out = subprocess.run([sys.executable, str(TOOL), str(path), "-o", str(tmp_path / "sky.exr"), "--png",
+                          str(tmp_path / "sky.png"), "--cache", str(tmp_path / "cache"), "--quiet"],
+                         capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr
+    assert (tmp_path / "sky.exr").stat().st_size > 0 and (tmp_path / "sky.png").stat().st_size > 0
+    assert "wrote" in out.stdout
+    scene["sun"]["elevation_deg"] = -5
+    path.write_text(json.dumps(scene))
+    bad = subprocess.run([sys.executable, str(TOOL), str(path), "--png", str(tmp_path / "bad.png"), "--cache",
+                          str(tmp_path / "cache"), "--quiet"], capture_output=True, text=True, timeout=300)
+    assert bad.returncode == 2 and "below the horizon" in bad.stderr
+    assert not (tmp_path / "bad.png").exists()
