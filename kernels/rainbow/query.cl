@@ -47,6 +47,7 @@ ARCUS_INLINE void rb_bilinear_coordinates(const REAL* c0, const REAL* c1, const 
     et[a] = c3[a] - c0[a];
     ex[a] = c0[a] - c1[a] + c2[a] - c3[a];
   }
+  const REAL s0 = *s, t0 = *t;
   for (int it = 0; it < 6; ++it) {
     REAL b[3], bs[3], bt[3];
     for (int a = 0; a < 3; ++a) {
@@ -62,6 +63,12 @@ ARCUS_INLINE void rb_bilinear_coordinates(const REAL* c0, const REAL* c1, const 
     *s -= ds;
     *t -= dt;
     if (fabs(ds) + fabs(dt) < RC(1e-13)) break;
+  }
+  /* A patch with two coinciding corners has a singular Jacobian somewhere: where Newton
+   * left the reals, the chord triangle's own coordinates stand. */
+  if (!(isfinite(*s) && isfinite(*t))) {
+    *s = s0;
+    *t = t0;
   }
   *s = clamp(*s, RC(0), RC(1));
   *t = clamp(*t, RC(0), RC(1));
@@ -98,6 +105,7 @@ __kernel void arcus_rainbow_query(__global const bvh_node* nodes, __global const
     /* the start: triangle (0, 1, 2) is (s, t) = (u + v, v); triangle (0, 2, 3) is (u, u + v) */
     REAL bs = tri % 2 == 0 ? u + v : u, bt = tri % 2 == 0 ? v : u + v;
     rb_bilinear_coordinates(cc[0], cc[1], cc[2], cc[3], d, &bs, &bt);
+    if (!(isfinite(bs) && isfinite(bt))) continue; /* a degenerate chord triangle's hit */
     const REAL wgt[4] = {(RC(1) - bs) * (RC(1) - bt), bs * (RC(1) - bt), bs * bt, (RC(1) - bs) * bt};
     REAL e[9];
     for (int x = 0; x < 9; ++x)

@@ -412,6 +412,7 @@ std::unique_ptr<RainbowJob> cast(arcus_context_t* ctx, const Particle& particle,
         for (int k = 0; k < 4; ++k) {
           q[k] = rec.at(p, c[k]);
           ok = ok && q[k][12] == 1 && q[k][13] == q[0][13];
+          for (int e = 0; e < 12 && ok; ++e) ok = std::isfinite(q[k][e]);
         }
         const double a = area[size_t(j) * cells + i];
         // the power leaving in term p through this cell: a record that does not exist
@@ -437,6 +438,13 @@ std::unique_ptr<RainbowJob> cast(arcus_context_t* ctx, const Particle& particle,
           continue;
         }
         const double s = std::fabs(solid_angle(q[0], q[1], q[2]) + solid_angle(q[0], q[2], q[3]));
+        // A patch whose corners leave in one direction (a focal point: the raindrop's
+        // p = 2 has some) spreads its light over no solid angle, an infinite intensity
+        // the interpolation cannot hold: unresolved, like the wide ones.
+        if (!(s > 1e-15)) {
+          ++info.patches_rejected;
+          continue;
+        }
         for (int k = 0; k < 4; ++k) {
           Corner& cr = corner[size_t(p) * rays + c[k]];
           cr.area += a;

@@ -501,3 +501,13 @@ def test_flat_meshes_give_glints(ctx, repo):
         np.testing.assert_allclose(books, flat.stats["scattered"][p], rtol=1e-12)
     assert rainbow.phase_function(rainbow.Sphere(RADIUS), NM, THETA, grid=64, context=ctx).glints is None
     assert rainbow.phase_function(rainbow.Mesh(path, scale=1e-3), NM, THETA, grid=64, context=ctx).glints is None
+
+
+def test_raindrop_tables_stay_finite_where_a_ray_leaves_degenerate(ctx):
+    # A 2 mm raindrop under an 8° sun at 380 nm: a few rays of p = 2 leave with a
+    # non-finite direction near grazing; their patches must be left out, not turn the
+    # table to NaN (a 2-D sky table once held NaN at θ 164°, φ 60°/120°).
+    from arcus import sky
+    r = rainbow.phase_function(rainbow.Raindrop(2e-3), 380.0, [164.0, 164.05], [60.0, 120.0], grid=1000,
+                               rotation=sky.upright_rotation(8.0), context=ctx)
+    assert np.all(np.isfinite(r.unpolarized)) and np.all(r.unpolarized > 0)
