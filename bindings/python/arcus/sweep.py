@@ -1,0 +1,882 @@
+"""Sweeps of independent jobs on Dask: phase-function tables, ocean grids, animation frames.
+
+::
+
+    import arcus.sweep as sweep
+
+    tables = sweep.phase_tables(
+        [{"kind": "sphere", "radius": 5e-4}, {"kind": "sphere", "radius": 5e-4, "method": "mie"}],
+        wavelengths=np.linspace(380, 700, 33), theta=np.arange(120, 150, 0.05), grid=1000)
+    print(tables.phase.shape, tables.cross_section, tables.computed, tables.cached)
+    tables.save("out/tables.npz")                     # PhaseTables.load("out/tables.npz")
+
+Every sweep is a list of tasks, each a JSON-serialisable dict of everything that
+decides its result, mapped by :func:`map_tasks` over
+
+* a Dask cluster: ``client=`` a ``distributed.Client`` or a scheduler address
+  (``"tcp://host:8786"``; start one with ``dask scheduler`` and ``dask worker ADDRESS``
+  on the machines, each able to ``import arcus``);
+* by default a ``LocalCluster`` of ``workers`` processes (one thread each) on this
+  machine, started for the sweep and closed after it;
+* or, with ``client="serial"`` or ``workers=0``, a plain loop in this process (the
+  reference: the same task function, the same results bit for bit).
+
+Each worker thread keeps one :class:`arcus.Context`.  Results are cached on disk, one
+``.npz`` per task named by the SHA-256 of the task's canonical JSON (with the task
+function's name and arcus' version), so a re-run, or a sweep interrupted or cut short
+by a failed task, computes only what is missing.  The cache lies in ``cache_dir``
+(default: ``$ARCUS_CACHE_DIR``, else ``$XDG_CACHE_HOME/arcus/tables``, else
+``~/.cache/arcus/tables``; ``False``: none).  A file that is missing, truncated,
+unreadable, of another key or whose checksum does not match its arrays is recomputed
+and overwritten, never trusted.  A task's key covers its JSON, not the contents of
+files a render scene names (meshes, textures): clear the cache when those change.
+
+Dask is imported only when a cluster is used; ``dask[distributed]`` is optional for
+``client="serial"``.
+"""
+
+import contextlib
+import copy
+import hashlib
+import itertools
+import json
+import math
+import os
+import sys
+import tempfile
+import threading
+import time
+from dataclasses import dataclass, fields
+
+import numpy as np
+
+from ._args import to_bool, to_choice, to_float, to_int, to_real_array
+from ._errors import ArgumentError
+
+#: Seconds to wait for a scheduler given by address before giving up.
+CONNECT_TIMEOUT = 10.0
+#: Part of every cache key: bump when the cache files' layout or a task's meaning changes.
+CACHE_FORMAT = 1
+#: Particle kinds of :func:`phase_tables` and the keys each takes, with their defaults
+#: (``...``: required).
+_COMMON = dict(material="water", rotation=None, temperature=20.0)
+PARTICLE_KEYS = dict(
+    sphere=dict(radius=..., method="rays", **_COMMON),
+    raindrop=dict(diameter=..., **_COMMON),
+    mesh=dict(path=..., scale=1.0, smooth=True, **_COMMON),
+    crystal=None,  # checked by arcus.halo.crystal_table on the worker
+)
+METHODS = dict(rays="rays", mie="mie")
+
+
+# ---- JSON, keys and the disk cache -------------------------------------------------------
+
+
+def _plain(value, name):
+    """``value`` (numpy arrays and scalars allowed) as plain JSON data, or ArgumentError."""
+    def default(v):
+        if isinstance(v, np.ndarray):
+            return v.tolist()
+        if isinstance(v, np.generic):
+            return v.item()
+        if isinstance(v, os.PathLike):
+            return os.fspath(v)
+        raise TypeError("%r is not JSON data" % (v,))
+    try:
+        return json.loads(json.dumps(value, default=default, allow_nan=False))
+    except (TypeError, ValueError) as exc:
+        raise ArgumentError("%s must be JSON data (numbers finite): %s" % (name, exc)) from None
+
+
+def _canonical(value):
+    """One text per value: sorted keys, no spaces; floats print exactly (repr)."""
+    return json.dumps(value, sort_keys=True, separators=(",", ":"), allow_nan=False)
+
+
+def default_cache_dir():
+    """The cache directory when none is given: ``$ARCUS_CACHE_DIR``, else
+    ``$XDG_CACHE_HOME/arcus/tables``, else ``~/.cache/arcus/tables``."""
+    if os.environ.get("ARCUS_CACHE_DIR"):
+        return os.environ["ARCUS_CACHE_DIR"]
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return os.path.join(base, "arcus", "tables")
+
+
+def _checksum(arrays):
+    """SHA-256 of named arrays: names, dtypes, shapes and bytes."""
+    h = hashlib.sha256()
+    for name in sorted(arrays):
+        a = np.ascontiguousarray(arrays[name])
+        h.update(("%s|%s|%s|" % (name, a.dtype.str, a.shape)).encode())
+        h.update(a.tobytes())
+    return h.hexdigest()
+
+
+def _atomic_savez(path, arrays):
+    """Writes ``arrays`` to ``path`` as .npz through a temporary file and os.replace, so
+    a reader (or a crash) never sees half a file."""
+    directory = os.path.dirname(os.path.abspath(path))
+    os.makedirs(directory, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=directory, prefix=".tmp-", suffix=".npz")
+    try:
+        with os.fdopen(fd, "wb") as f:
+            np.savez(f, **arrays)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+
+
+class _Cache:
+    """One .npz per task: the payload arrays, ``_key`` (the task's canonical JSON) and
+    ``_checksum`` (of the payload).  ``directory`` None: no cache."""
+
+    def __init__(self, directory):
+        self.directory = directory
+
+    def _path(self, digest):
+        return os.path.join(self.directory, digest + ".npz")
+
+    def read(self, digest, key):
+        """The cached payload of the task, or None if there is no trustworthy one."""
+        if self.directory is None:
+            return None
+        try:
+            with np.load(self._path(digest), allow_pickle=False) as f:
+                arrays = {name: f[name] for name in f.files}
+        except Exception:  # missing, truncated, not a zip, CRC error, bad header: recompute
+            return None
+        stored_key, stored_sum = arrays.pop("_key", None), arrays.pop("_checksum", None)
+        if stored_key is None or stored_sum is None or str(stored_key) != key or str(stored_sum) != _checksum(arrays):
+            return None
+        return arrays
+
+    def write(self, digest, key, payload):
+        if self.directory is not None:
+            _atomic_savez(self._path(digest), dict(payload, _key=np.array(key), _checksum=np.array(_checksum(payload))))
+
+
+def _payload(result, function):
+    """A task's return value as named numeric arrays (what the cache can hold)."""
+    if not isinstance(result, dict) or not result:
+        raise TypeError("%s must return a non-empty dict of arrays, got %r" % (function, type(result)))
+    out = {}
+    for name, value in result.items():
+        a = np.asarray(value)
+        if not isinstance(name, str) or name.startswith("_") or a.dtype.kind not in "biufc":
+            raise TypeError("%s returned %r: %r; expected numeric arrays under names not starting with '_'"
+                            % (function, name, a.dtype))
+        out[name] = a
+    return out
+
+
+# ---- running tasks -------------------------------------------------------------------------
+
+
+@dataclass
+class TaskResults:
+    """What :func:`map_tasks` did: ``results`` (one dict of arrays per task, in order),
+    ``computed`` and ``cached`` (tasks computed now / read from the cache; a task listed
+    twice counts once), ``cache_dir`` (None without a cache) and ``seconds``."""
+
+    results: list
+    computed: int
+    cached: int
+    cache_dir: object
+    seconds: float
+
+
+def _function_name(function):
+    name = "%s.%s" % (getattr(function, "__module__", "?"), getattr(function, "__qualname__", "?"))
+    if not callable(function) or "<" in name:
+        # A lambda's or a local function's name says nothing about what it computes,
+        # and the name keys the cache.
+        raise ArgumentError("function must be a module-level function (its name keys the cache), got %r"
+                            % (function,))
+    return name
+
+
+def _check_workers(workers):
+    if workers is None:
+        return None
+    return to_int(workers, "workers", 0, 4096)
+
+
+@contextlib.contextmanager
+def _dask_client(client, workers, connect_timeout):
+    """A distributed.Client for the sweep: the caller's, one connected to an address,
+    or one on a LocalCluster of ``workers`` processes; whatever is started here is
+    closed on leaving."""
+    import distributed
+    if isinstance(client, distributed.Client):
+        yield client
+        return
+    if isinstance(client, str):
+        try:
+            c = distributed.Client(client, timeout=connect_timeout, set_as_default=False)
+        except ValueError as exc:
+            raise ArgumentError("client: %r is not a Dask scheduler address (e.g. 'tcp://host:8786'): %s"
+                                % (client, exc)) from None
+        except OSError as exc:
+            raise ConnectionError("client: no Dask scheduler answered at %r within %g s (%s)"
+                                  % (client, connect_timeout, exc)) from None
+        try:
+            yield c
+        finally:
+            c.close()
+        return
+    # One thread a worker: a task keeps the device busy by itself.  Port 0 for the
+    # scheduler's HTTP server: a scheduler already on 8787 is no reason for a warning.
+    cluster = distributed.LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
+                                       processes=True, dashboard_address=":0")
+    try:
+        with distributed.Client(cluster, set_as_default=False) as c:
+            yield c
+    finally:
+        cluster.close()
+
+
+def _text_bar(done, total, started):
+    """The serial loop's progress on stderr (Dask draws its own for a cluster)."""
+    width = 40
+    frac = done / total if total else 1.0
+    sys.stderr.write("\r[%-*s] | %3d%% Completed | %.1fs" % (width, "#" * int(width * frac), 100 * frac,
+                                                             time.monotonic() - started))
+    if done == total:
+        sys.stderr.write("\n")
+    sys.stderr.flush()
+
+
+def _run_serial(function, tasks, finish, errors, progress, **_):
+    """Runs ``tasks`` (digest -> spec) here, one after another."""
+    started = time.monotonic()
+    for n, (digest, spec) in enumerate(tasks.items()):
+        try:
+            finish(digest, function(spec))
+        except Exception as exc:
+            errors.append((digest, exc))
+        if progress:
+            _text_bar(n + 1, len(tasks), started)
+
+
+def _run_on_dask(function, tasks, finish, errors, progress, *, client, workers, connect_timeout):
+    """Runs ``tasks`` (digest -> spec) on Dask, finishing each as it arrives; on an
+    interrupt the tasks still pending are cancelled."""
+    import distributed
+    with _dask_client(client, workers, connect_timeout) as dask_client:
+        prefix = getattr(function, "__name__", "task").strip("_")  # names the bar's row
+        futures = dask_client.map(function, list(tasks.values()), key=["%s-%s" % (prefix, d) for d in tasks],
+                                  pure=False)
+        digest_of = {f.key: d for f, d in zip(futures, tasks)}
+        bar = None
+        if progress:
+            # distributed.progress blocks until the futures finish, so it draws from a
+            # thread while this one caches each result as it arrives.
+            bar = threading.Thread(target=distributed.progress, args=(futures,), daemon=True,
+                                   kwargs=dict(notebook=False, scheduler=dask_client.scheduler.address))
+            bar.start()
+        try:
+            # with_results: the results are fetched on the client's loop as they come,
+            # not one round trip at a time from here
+            for future, result in distributed.as_completed(futures, loop=dask_client.loop, with_results=True,
+                                                           raise_errors=False):
+                try:
+                    if future.status != "finished":
+                        future.result()  # raises the task's exception
+                    finish(digest_of[future.key], result)
+                except Exception as exc:
+                    errors.append((digest_of[future.key], exc))
+        except BaseException:  # interrupted: what finished is cached, the rest is dropped
+            dask_client.cancel(futures)
+            raise
+        finally:
+            if bar is not None:
+                bar.join(timeout=5)
+
+
+def map_tasks(function, specs, *, cache_dir=None, client=None, workers=None, progress=False,
+              connect_timeout=CONNECT_TIMEOUT):
+    """Maps ``function`` over ``specs`` (JSON-serialisable task descriptions), each
+    result a dict of numeric arrays, with the disk cache and a Dask cluster (see the
+    module's docstring): a :class:`TaskResults`.
+
+    Only the tasks without a trustworthy cache file run; each result is cached as soon
+    as it arrives.  A failing task does not stop the others: they finish (and are
+    cached), then the first failure is raised again with a note naming its task.
+
+    Args:
+        function: a module-level function ``function(spec) -> {name: array}``,
+            importable on the workers; its qualified name is part of the cache key.
+        specs: a list of dicts; each is passed through JSON first, so the task sees
+            exactly what keyed it.
+        cache_dir: a directory, None (:func:`default_cache_dir`) or False (no cache).
+        client: None (a LocalCluster here), a ``distributed.Client``, a scheduler
+            address, or "serial" (a loop in this process).
+        workers: the LocalCluster's worker processes (default: os.cpu_count()); 0: serial.
+        progress: show a progress bar (Dask's ``distributed.progress``; stderr when serial).
+        connect_timeout: seconds to wait for a scheduler given by address.
+    """
+    started = time.monotonic()
+    name = _function_name(function)
+    workers = _check_workers(workers)
+    progress = to_bool(progress, "progress")
+    named_serial = isinstance(client, str) and client == "serial"
+    serial = named_serial or workers == 0
+    if not (client is None or named_serial) and workers is not None:
+        raise ArgumentError("workers applies to the local cluster only, not with client=%r" % (client,))
+    if not (client is None or isinstance(client, str)):
+        import distributed
+        if not isinstance(client, distributed.Client):
+            raise ArgumentError("client must be None, 'serial', a scheduler address or a distributed.Client, got %r"
+                                % (client,))
+    if not isinstance(specs, (list, tuple)):
+        raise ArgumentError("specs must be a list of task dicts, got %r" % (type(specs),))
+    specs = [_plain(s, "specs[%d]" % i) for i, s in enumerate(specs)]
+    if cache_dir is False:
+        cache = _Cache(None)
+    else:
+        cache = _Cache(os.fspath(default_cache_dir() if cache_dir is None else cache_dir))
+
+    # Tasks by digest: a task listed twice runs once.
+    keys = [_canonical(dict(function=name, spec=s, arcus=_arcus_version(), format=CACHE_FORMAT)) for s in specs]
+    digests = [hashlib.sha256(k.encode()).hexdigest() for k in keys]
+    payloads = {}
+    for d, k in zip(digests, keys):
+        if d not in payloads:
+            payloads[d] = cache.read(d, k)
+    cached = sum(p is not None for p in payloads.values())
+    todo = {}  # digest -> (key, spec), in the order given
+    for d, k, s in zip(digests, keys, specs):
+        if payloads[d] is None:
+            todo.setdefault(d, (k, s))
+
+    def finish(digest, result):
+        payloads[digest] = _payload(result, name)
+        cache.write(digest, todo[digest][0], payloads[digest])
+
+    errors = []
+    if todo:
+        run = _run_serial if serial else _run_on_dask
+        run(function, {d: s for d, (_, s) in todo.items()}, finish, errors, progress, client=client, workers=workers,
+            connect_timeout=connect_timeout)
+    if errors:
+        order = list(todo)
+        digest, exc = min(errors, key=lambda e: order.index(e[0]))
+        index = digests.index(digest)
+        others = len(todo) - len(errors)
+        exc.add_note("arcus.sweep: task %d of %d failed: %s(%s); %d of the %d tasks run failed%s"
+                     % (index, len(specs), name, _canonical(specs[index])[:300], len(errors), len(todo),
+                        "" if not others else "; the %d others finished%s" % (others, " and are cached"
+                                                                               if cache.directory else "")))
+        raise exc
+    return TaskResults(results=[payloads[d] for d in digests], computed=len(todo), cached=cached,
+                       cache_dir=cache.directory, seconds=time.monotonic() - started)
+
+
+def _arcus_version():
+    from . import __version__
+    return __version__
+
+
+# ---- one Context per worker thread -------------------------------------------------------
+
+_contexts = {}  # (pid, thread) -> arcus.Context: a forked child makes its own
+
+
+def _worker_context():
+    """This worker thread's arcus.Context, created on first use (one per thread: a
+    context serialises its jobs)."""
+    key = (os.getpid(), threading.get_ident())
+    ctx = _contexts.get(key)
+    if ctx is None:
+        from .context import Context
+        ctx = _contexts[key] = Context()
+    return ctx
+
+
+# ---- results saved as .npz -----------------------------------------------------------------
+
+
+class _Archive:
+    """save()/load() of a sweep's result as a plain .npz: arrays as they are, numbers as
+    0-d arrays, everything else (specs, scenes, None) as JSON text, listed in ``_json``."""
+
+    _transient = ("computed", "cached")
+
+    def save(self, path):
+        """Writes the result to ``path`` (a .npz, written atomically)."""
+        arrays, as_json = dict(type=np.array(type(self).__name__)), []
+        for f in fields(self):
+            value = getattr(self, f.name)
+            if f.name in self._transient:
+                continue
+            if isinstance(value, np.ndarray):
+                arrays[f.name] = value
+            elif isinstance(value, (int, float)) and not isinstance(value, bool):
+                arrays[f.name] = np.array(value)
+            else:
+                arrays[f.name] = np.array(_canonical(value))
+                as_json.append(f.name)
+        arrays["_json"] = np.array(as_json, dtype=str)
+        _atomic_savez(os.fspath(path), arrays)
+
+    @classmethod
+    def load(cls, path):
+        """Reads a file written by :meth:`save`."""
+        try:
+            with np.load(path, allow_pickle=False) as f:
+                arrays = {name: f[name] for name in f.files}
+        except (OSError, ValueError) as exc:
+            raise ArgumentError("path: cannot read %r as a saved sweep: %s" % (os.fspath(path), exc)) from None
+        kind = str(arrays.get("type", "no saved sweep"))
+        if kind != cls.__name__:
+            raise ArgumentError("path: %r holds %s, not %s" % (os.fspath(path), kind, cls.__name__))
+        as_json = set(arrays.get("_json", np.array([], dtype=str)).tolist())
+        names = [f.name for f in fields(cls) if f.name not in cls._transient]
+        missing = [n for n in names if n not in arrays]
+        if missing:
+            raise ArgumentError("path: %r lacks %s" % (os.fspath(path), ", ".join(missing)))
+        values = {n: json.loads(str(arrays[n])) if n in as_json else arrays[n] for n in names}
+        return cls(**{n: v.item() if isinstance(v, np.ndarray) and v.ndim == 0 else v for n, v in values.items()})
+
+
+# ---- phase-function tables -----------------------------------------------------------------
+
+
+@dataclass(eq=False)
+class PhaseTables(_Archive):
+    """Phase functions and cross-sections of particles over wavelengths (:func:`phase_tables`).
+
+    Attributes:
+        particles: the N particle specs (with their defaults filled in).
+        wavelengths: (L,) [nm]; theta: (T,) [deg]; phi: None, one azimuth [deg] or (F,).
+        phase: (N, L, T), or (N, L, F, T) for an array ``phi``: the unpolarised phase
+            function per steradian, the light of p = 0..P integrating to 1.
+        cross_section: (N, L) [m²]: the power per unit irradiance ``phase`` distributes.
+        extinction: (N, L) [m²] (rays: twice the intercepted area, the extinction paradox).
+        intercepted: (N, L) [m²]: the particle's projected area.
+        remaining: (N, L): the fraction of the intercepted power not scattered in p ≤ P (0 for Mie).
+        grid, max_bounces: the cast's parameters.
+        computed, cached: tasks computed by this call / read from the cache (not saved).
+    """
+
+    particles: list
+    wavelengths: np.ndarray
+    theta: np.ndarray
+    phi: object
+    phase: np.ndarray
+    cross_section: np.ndarray
+    extinction: np.ndarray
+    intercepted: np.ndarray
+    remaining: np.ndarray
+    grid: int
+    max_bounces: int
+    computed: int = 0
+    cached: int = 0
+
+
+def _particle(spec, i):
+    """A particle spec checked, defaults filled in, a mesh's path made absolute."""
+    name = "particles[%d]" % i
+    if not isinstance(spec, dict):
+        raise ArgumentError("%s must be a dict with a 'kind', got %r" % (name, spec))
+    kind = spec.get("kind")
+    if kind not in PARTICLE_KEYS:
+        raise ArgumentError("%s: unknown kind %r (expected one of %s)"
+                            % (name, kind, ", ".join(map(repr, PARTICLE_KEYS))))
+    keys = PARTICLE_KEYS[kind]
+    if keys is None:  # crystals: arcus.halo checks them and fills in their defaults
+        try:
+            from . import halo
+        except ImportError:
+            raise ArgumentError("%s: kind 'crystal' needs arcus.halo, which this arcus lacks" % name) from None
+        try:
+            return _plain(halo.normalise_spec(spec), name)
+        except ArgumentError as exc:
+            raise ArgumentError("%s: %s" % (name, exc.message)) from None
+    unknown = set(spec) - set(keys) - {"kind"}
+    if unknown:
+        raise ArgumentError("%s: unknown key %s for a %s (expected %s)"
+                            % (name, ", ".join(map(repr, sorted(unknown))), kind, ", ".join(keys)))
+    out = dict(kind=kind)
+    for key, default in keys.items():
+        if key not in spec and default is ...:
+            raise ArgumentError("%s: a %s needs %r" % (name, kind, key))
+        out[key] = spec.get(key, default)
+    for key in ("radius", "diameter", "scale", "temperature"):
+        if key in out:
+            value = out[key] = to_float(out[key], "%s.%s" % (name, key))
+            positive = key != "temperature"
+            if not math.isfinite(value) or (positive and value <= 0):
+                raise ArgumentError("%s.%s must be a finite number%s, got %r" % (name, key, " > 0" * positive, value))
+    out["material"] = to_choice(out["material"], name + ".material", dict(water="water", ice="ice"))
+    if out["rotation"] is not None:
+        r = to_real_array(out["rotation"], name + ".rotation")
+        if r.shape != (3, 3) or not np.isfinite(r).all():
+            raise ArgumentError("%s.rotation must be a finite 3x3 matrix (particle -> world), got %r"
+                                % (name, out["rotation"]))
+        out["rotation"] = r.tolist()
+    if kind == "sphere":
+        out["method"] = to_choice(out["method"], name + ".method", METHODS)
+    if kind == "mesh":
+        if not isinstance(out["path"], (str, os.PathLike)):
+            raise ArgumentError("%s.path must be a file name, got %r" % (name, out["path"]))
+        out["path"] = os.path.abspath(os.fspath(out["path"]))  # the workers' working directory may differ
+        if not os.path.isfile(out["path"]):
+            raise ArgumentError("%s.path: no such file %r" % (name, out["path"]))
+        out["smooth"] = to_bool(out["smooth"], name + ".smooth")
+    return out
+
+
+def _file_digest(path):
+    """SHA-256 of a file's bytes: a mesh's content, not its name, keys its tables."""
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def _wavelengths(values):
+    wl = np.atleast_1d(to_real_array(values, "wavelengths"))
+    if wl.ndim != 1 or wl.size == 0:
+        raise ArgumentError("wavelengths must be a number or a non-empty 1-D array [nm], got shape %s" % (wl.shape,))
+    bad = ~(np.isfinite(wl) & (wl > 0))
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        raise ArgumentError("wavelengths[%d] must be a finite number of nm > 0, got %r" % (i, float(wl[i])))
+    return wl
+
+
+def _phi(phi):
+    """None, one azimuth (a float) or a 1-D array, as phase_function takes them."""
+    from .rainbow import _angles
+    if phi is None:
+        return None
+    angles = _angles(phi, "phi", None, None)
+    return float(angles[0]) if np.ndim(phi) == 0 else angles
+
+
+def _phase_task(task):
+    """One particle at one wavelength (a task of :func:`phase_tables`)."""
+    spec, wl, theta, grid, bounces = (task[k] for k in ("particle", "wavelength", "theta", "grid", "max_bounces"))
+    theta = np.array(theta, dtype=np.float64)
+    phi = np.array(task["phi"], dtype=np.float64) if isinstance(task["phi"], list) else task["phi"]
+    kind = spec["kind"]
+    if kind == "crystal":
+        from . import halo  # imported only where crystals are asked for
+        r = halo.crystal_table(spec, wl, theta, phi, grid=grid, max_bounces=bounces, context=_worker_context())
+        return {k: r[k] for k in ("phase", "cross_section", "extinction", "intercepted", "remaining")}
+    from . import mie, rainbow
+    if kind == "sphere" and spec["method"] == "mie":
+        n = None if spec["material"] == "water" else rainbow.refractive_index(spec["material"], wl, spec["temperature"])
+        m = mie.phase_function(spec["radius"], wl, theta, n=n, temperature=spec["temperature"])
+        phase = m.unpolarized if np.ndim(phi) == 0 else np.broadcast_to(m.unpolarized, (len(phi), theta.size)).copy()
+        area = math.pi * spec["radius"] ** 2
+        return dict(phase=phase, cross_section=m.q_sca * area, extinction=m.q_ext * area, intercepted=area,
+                    remaining=0.0)
+    if kind == "sphere":
+        particle = rainbow.Sphere(spec["radius"])
+    elif kind == "raindrop":
+        particle = rainbow.Raindrop(spec["diameter"])
+    else:
+        particle = rainbow.Mesh(spec["path"], scale=spec["scale"], smooth=spec["smooth"])
+    r = rainbow.phase_function(particle, wl, theta, phi, grid=grid, max_bounces=bounces, material=spec["material"],
+                               temperature=spec["temperature"], rotation=spec["rotation"], context=_worker_context())
+    intercepted = r.stats["intercepted"]
+    return dict(phase=np.ascontiguousarray(r.unpolarized.T),  # (T,) stays; (T, F) -> (F, T)
+                cross_section=intercepted * float(np.sum(r.stats["scattered"])), extinction=2.0 * intercepted,
+                intercepted=intercepted, remaining=r.stats["remaining"])
+
+
+def phase_tables(particles, wavelengths, theta, phi=None, *, grid=1000, max_bounces=3, cache_dir=None, client=None,
+                 workers=None, progress=False, connect_timeout=CONNECT_TIMEOUT):
+    """Phase functions and cross-sections of ``particles`` at each of ``wavelengths``
+    nm and scattering angles ``theta`` degrees: a :class:`PhaseTables`, one task per
+    (particle, wavelength) on Dask (see the module's docstring for ``cache_dir``,
+    ``client``, ``workers``, ``progress``).
+
+    Args:
+        particles: a list of dicts: ``{"kind": "sphere", "radius": m, "method": "rays"
+            | "mie"}``, ``{"kind": "raindrop", "diameter": m}``, ``{"kind": "mesh",
+            "path": file, "scale": 1.0, "smooth": True}``, each optionally with
+            ``"rotation"`` (3x3, particle -> world), ``"material"`` ("water", "ice") and
+            ``"temperature"`` (°C); or ``{"kind": "crystal", ...}`` for
+            :func:`arcus.halo.crystal_table`.  Mie ignores rotation and phi.
+        phi: None (azimuth 0), one azimuth, or an array: tables over φ × θ.
+        grid, max_bounces: the cast's rays per side and terms p = 0..P
+            (:func:`arcus.rainbow.phase_function`).
+    """
+    if not isinstance(particles, (list, tuple)) or not particles:
+        raise ArgumentError("particles must be a non-empty list of particle dicts, got %r" % (particles,))
+    specs = [_particle(p, i) for i, p in enumerate(particles)]
+    wl = _wavelengths(wavelengths)
+    from .rainbow import _angles
+    theta = _angles(theta, "theta", 0.0, 180.0)
+    phi = _phi(phi)
+    grid = to_int(grid, "grid", 4, 8192)
+    max_bounces = to_int(max_bounces, "max_bounces", 0, 15)
+    common = dict(theta=theta.tolist(), phi=phi.tolist() if isinstance(phi, np.ndarray) else phi, grid=grid,
+                  max_bounces=max_bounces)
+    # A mesh's bytes key its tables too (the worker ignores them): an edited file is a new particle.
+    files = [dict(file_sha256=_file_digest(s["path"])) if s["kind"] == "mesh" else {} for s in specs]
+    tasks = [dict(common, particle=s, wavelength=float(w), **f) for s, f in zip(specs, files) for w in wl]
+    run = map_tasks(_phase_task, tasks, cache_dir=cache_dir, client=client, workers=workers, progress=progress,
+                    connect_timeout=connect_timeout)
+    n, count = len(specs), wl.size
+    shape = (theta.size,) if not isinstance(phi, np.ndarray) else (phi.size, theta.size)
+    for i, r in enumerate(run.results):
+        if r["phase"].shape != shape:  # a crystal's table comes from arcus.halo
+            raise ValueError("task %d (%s) returned phase of shape %s, expected %s"
+                             % (i, specs[i // count]["kind"], r["phase"].shape, shape))
+
+    def gathered(name):
+        values = np.array([r[name] for r in run.results], dtype=np.float64)
+        return values.reshape((n, count) + values.shape[1:])
+
+    return PhaseTables(particles=specs, wavelengths=wl, theta=theta, phi=phi, phase=gathered("phase"),
+                       cross_section=gathered("cross_section"), extinction=gathered("extinction"),
+                       intercepted=gathered("intercepted"), remaining=gathered("remaining"), grid=grid,
+                       max_bounces=max_bounces, computed=run.computed, cached=run.cached)
+
+
+# ---- scenes: ocean grids and animation frames ------------------------------------------------
+
+
+def _scene(scene, name):
+    """(document, directory): a scene file read, or a dict copied; the directory its
+    relative file names are read against (None for a dict)."""
+    if isinstance(scene, dict):
+        return _plain(scene, name), None
+    if not isinstance(scene, (str, os.PathLike)):
+        raise ArgumentError("%s must be a scene file or a dict, got %r" % (name, scene))
+    try:
+        with open(scene, encoding="utf-8") as f:
+            doc = json.load(f)
+    except (OSError, ValueError) as exc:
+        raise ArgumentError("%s: cannot read %r: %s" % (name, os.fspath(scene), exc)) from None
+    if not isinstance(doc, dict):
+        raise ArgumentError("%s: %r is not a JSON object" % (name, os.fspath(scene)))
+    return doc, os.path.dirname(os.path.abspath(scene))
+
+
+def _resize(camera, width, height, name):
+    """Sets the camera's size where asked (small images make a sweep cheap)."""
+    if not isinstance(camera, dict):
+        raise ArgumentError("%s has no camera" % name)
+    for key, value in (("width", width), ("height", height)):
+        if value is not None:
+            camera[key] = to_int(value, key, 1, 16384)
+
+
+def _axis(values, name):
+    """A sweep axis: a number or a non-empty 1-D array of finite numbers."""
+    a = np.atleast_1d(to_real_array(values, name))
+    if a.ndim != 1 or a.size == 0 or not np.isfinite(a).all():
+        raise ArgumentError("%s must be a finite number or a non-empty 1-D array of them, got %r" % (name, values))
+    return a
+
+
+@dataclass(eq=False)
+class OceanGrid(_Archive):
+    """Ocean renders over the bio-optical parameters (:func:`ocean_grid`): ``image``
+    (C, Ad, Ay, H, W, 3) linear sRGB at ``chlorophyll`` (C,) [mg/m³], ``a_d400`` (Ad,)
+    and ``a_y440`` (Ay,) [1/m]; ``scene`` the document rendered (with the camera size
+    and other overrides, before the three values are set)."""
+
+    chlorophyll: np.ndarray
+    a_d400: np.ndarray
+    a_y440: np.ndarray
+    image: np.ndarray
+    scene: dict
+    computed: int = 0
+    cached: int = 0
+
+
+def _ocean_task(task):
+    """One water of :func:`ocean_grid`: the ocean scene's view, linear sRGB."""
+    from . import ocean
+    image = ocean.render(task["scene"], context=_worker_context(), **task["overrides"]).image
+    return dict(image=image)
+
+
+def ocean_grid(scene, chlorophyll, a_d400, a_y440, *, width=64, height=48, photons=None, k=None, steps=None,
+               estimator=None, cache_dir=None, client=None, workers=None, progress=False,
+               connect_timeout=CONNECT_TIMEOUT):
+    """The thesis' Fig. 5.8 as a grid: the ocean ``scene`` (a file or dict,
+    scenes/README.md "Ocean scenes", with a bio-optical "water") rendered at
+    ``width`` × ``height`` for every chlorophyll C [mg/m³] × a_d(400) × a_y(440) [1/m],
+    one task each: an :class:`OceanGrid`.  ``photons``, ``k``, ``steps`` and
+    ``estimator`` override the scene's (:func:`arcus.ocean.render`)."""
+    doc, _ = _scene(scene, "scene")
+    water = doc.get("water")
+    if not isinstance(water, dict) or "iops" in water:
+        raise ArgumentError("scene: ocean_grid needs an ocean scene with a bio-optical \"water\" (not \"iops\")")
+    _resize(doc.get("view", {}).get("camera"), width, height, "scene.view")
+    axes = [_axis(v, n) for v, n in ((chlorophyll, "chlorophyll"), (a_d400, "a_d400"), (a_y440, "a_y440"))]
+    overrides = {n: to_int(v, n, 1, 2 ** 40) for n, v in dict(photons=photons, k=k, steps=steps).items()
+                 if v is not None}
+    if estimator is not None:
+        overrides["estimator"] = to_choice(estimator, "estimator", dict(per_step="per_step", beam="beam"))
+    tasks = []
+    for c, d, y in itertools.product(*axes):
+        task_doc = copy.deepcopy(doc)
+        task_doc["water"].update(chlorophyll=float(c), a_d400=float(d), a_y440=float(y))
+        tasks.append(dict(scene=task_doc, overrides=overrides))
+    run = map_tasks(_ocean_task, tasks, cache_dir=cache_dir, client=client, workers=workers, progress=progress,
+                    connect_timeout=connect_timeout)
+    images = np.stack([r["image"] for r in run.results])
+    return OceanGrid(chlorophyll=axes[0], a_d400=axes[1], a_y440=axes[2],
+                     image=images.reshape(tuple(a.size for a in axes) + images.shape[1:]), scene=doc,
+                     computed=run.computed, cached=run.cached)
+
+
+@dataclass(eq=False)
+class Frames(_Archive):
+    """Animation frames of a render scene (:func:`frames`): ``image`` (N, H, W, 3)
+    linear RGB, frame i with the scene's ``parameter`` (a path such as
+    "camera.position.1") set to ``values[i]``; ``scene`` the document rendered."""
+
+    parameter: str
+    values: np.ndarray
+    image: np.ndarray
+    scene: dict
+    computed: int = 0
+    cached: int = 0
+
+
+def _set(doc, path, value):
+    """Sets the number at ``path`` ("camera.position.1": keys and list indices) in ``doc``."""
+    parts = path.split(".")
+    node = doc
+    for depth, part in enumerate(parts):
+        where = ".".join(parts[:depth]) or "the scene"
+        if isinstance(node, list):
+            if not part.isdigit() or int(part) >= len(node):
+                raise ArgumentError("parameter: %r: %s has %d entries, no %r" % (path, where, len(node), part))
+            part = int(part)
+        elif not isinstance(node, dict) or part not in node:
+            raise ArgumentError("parameter: %r: %s has no %r" % (path, where, part))
+        if depth == len(parts) - 1:
+            if isinstance(node[part], bool) or not isinstance(node[part], (int, float)):
+                raise ArgumentError("parameter: %r is %r in the scene, not a number" % (path, node[part]))
+            node[part] = value
+        node = node[part]
+
+
+def _frame_task(task):
+    """One frame of :func:`frames`: the render scene's image."""
+    result = _worker_context().render(task["scene"], techniques=task["techniques"], base_dir=task["base_dir"])
+    return dict(image=result.image)
+
+
+def frames(scene, parameter, values, *, width=None, height=None, techniques=None, base_dir=None, cache_dir=None,
+           client=None, workers=None, progress=False, connect_timeout=CONNECT_TIMEOUT):
+    """Frames of a render scene (a file or dict with a "camera", scenes/README.md
+    "Render scenes") with one number varied, one task per frame: a :class:`Frames`.
+
+    ``parameter`` names the number by its path in the scene, keys and list indices
+    joined by dots ("camera.position.1": the eye's height; "camera.vfov_deg"); frame i
+    renders with it set to ``values[i]``.  ``width``/``height`` resize the camera;
+    ``techniques`` as :meth:`arcus.Context.render`.  Relative file names in the scene
+    are read against its file's directory (``base_dir`` for a dict, default the
+    current directory), which the workers must see too.
+    """
+    doc, directory = _scene(scene, "scene")
+    if "camera" not in doc:
+        raise ArgumentError("scene: frames needs a render scene (one with a \"camera\")")
+    if not isinstance(parameter, str) or not parameter:
+        raise ArgumentError("parameter must be a path such as 'camera.position.1', got %r" % (parameter,))
+    _resize(doc["camera"], width, height, "scene")
+    values = _axis(values, "values")
+    _set(copy.deepcopy(doc), parameter, 0.0)  # a bad path fails here, before any task
+    if techniques is not None:
+        techniques = [techniques] if isinstance(techniques, str) else list(techniques)
+    base = os.path.abspath(directory or base_dir or ".")
+    tasks = []
+    for v in values:
+        task_doc = copy.deepcopy(doc)
+        _set(task_doc, parameter, float(v))
+        tasks.append(dict(scene=task_doc, techniques=techniques, base_dir=base))
+    run = map_tasks(_frame_task, tasks, cache_dir=cache_dir, client=client, workers=workers, progress=progress,
+                    connect_timeout=connect_timeout)
+    return Frames(parameter=parameter, values=values, image=np.stack([r["image"] for r in run.results]), scene=doc,
+                  computed=run.computed, cached=run.cached)
+
+
+# ---- sweeps described in JSON (apps/sweep/arcus_sweep.py) ------------------------------------
+
+
+def _spec_axis(value, name):
+    """An axis of a JSON spec: a list of values, one value, {"linspace": [first, last,
+    count]} or {"range": [first, last, step]} (last included when the steps reach it,
+    as the ocean's wavelength grids)."""
+    if isinstance(value, dict):
+        if len(value) != 1 or next(iter(value)) not in ("linspace", "range"):
+            raise ArgumentError("%s: a list, {\"linspace\": [first, last, count]} or {\"range\": [first, last, step]},"
+                                " got %r" % (name, value))
+        (form, args), = value.items()
+        a = to_real_array(args, "%s.%s" % (name, form))
+        if a.shape != (3,) or not np.isfinite(a).all():
+            raise ArgumentError("%s.%s must be three finite numbers, got %r" % (name, form, args))
+        first, last, third = a
+        if form == "linspace":
+            return np.linspace(first, last, to_int(third, name + ".linspace count", 1, 10 ** 6))
+        if not (third > 0 and last >= first):
+            raise ArgumentError("%s.range needs step > 0 and last >= first, got %r" % (name, args))
+        count = int(math.floor((last - first) / third + 1e-9)) + 1
+        values = first + third * np.arange(count)
+        if abs(values[-1] - last) <= 1e-9 * third:
+            values[-1] = last  # exactly: 0 + 1800 steps of 0.1 must not land past 180
+        return values
+    return value
+
+
+#: Keys of each kind of JSON spec: the function's arguments, with axes by _spec_axis.
+SPEC_KINDS = dict(
+    phase_tables=(phase_tables, ("particles", "wavelengths", "theta"), ("phi", "grid", "max_bounces"),
+                  ("wavelengths", "theta", "phi")),
+    ocean_grid=(ocean_grid, ("scene", "chlorophyll", "a_d400", "a_y440"),
+                ("width", "height", "photons", "k", "steps", "estimator"), ("chlorophyll", "a_d400", "a_y440")),
+    frames=(frames, ("scene", "parameter", "values"), ("width", "height", "techniques"), ("values",)),
+)
+
+
+def run_spec(spec, *, base_dir=".", **options):
+    """Runs a sweep described in JSON (a dict, e.g. read from scenes/sweeps/*.json):
+    ``{"kind": "phase_tables" | "ocean_grid" | "frames", ...}`` with the arguments of
+    that function (axes also as {"linspace": [first, last, count]} or {"range": [first,
+    last, step]}); "name" and "description" are free.  Relative file names (a scene, a
+    mesh's path) are read against ``base_dir``, the spec file's directory.  ``options``
+    go to the function (client, workers, cache_dir, progress, connect_timeout).
+    Returns its result (with ``save``)."""
+    if not isinstance(spec, dict):
+        raise ArgumentError("spec must be a JSON object, got %r" % (spec,))
+    kind = spec.get("kind")
+    if kind not in SPEC_KINDS:
+        raise ArgumentError("spec: unknown kind %r (expected one of %s)" % (kind, ", ".join(map(repr, SPEC_KINDS))))
+    function, required, optional, axes = SPEC_KINDS[kind]
+    args = {k: v for k, v in spec.items() if k not in ("kind", "name", "description")}
+    unknown = set(args) - set(required) - set(optional)
+    if unknown:
+        raise ArgumentError("spec: unknown key %s for kind %r (expected %s)"
+                            % (", ".join(map(repr, sorted(unknown))), kind, ", ".join(required + optional)))
+    missing = [k for k in required if k not in args]
+    if missing:
+        raise ArgumentError("spec: kind %r needs %s" % (kind, ", ".join(map(repr, missing))))
+    for k in axes:
+        if k in args:
+            args[k] = _spec_axis(args[k], "spec." + k)
+
+    def resolve(path):
+        return path if not isinstance(path, str) or os.path.isabs(path) else os.path.join(base_dir, path)
+
+    if "scene" in args:
+        args["scene"] = resolve(args["scene"])
+    if kind == "phase_tables" and isinstance(args["particles"], list):
+        args["particles"] = [dict(p, path=resolve(p["path"])) if isinstance(p, dict) and "path" in p else p
+                             for p in args["particles"]]
+    return function(**args, **options)
