@@ -33,7 +33,8 @@ def strip_scene(populations, **tables):
         "rain": {"box_min": [-5000, 0, 200], "box_max": [5000, 5000, 1200], "march_steps": 64,
                  "populations": populations},
         "background": {"sky": {"radiance": 0.0}, "ground": {"radiance": 0.0}},
-        "tables": dict({"wavelengths": [400, 700, 8], "theta": [100, 180, 0.05], "grid": 300, "max_bounces": 3},
+        "tables": dict({"wavelengths": {"linspace": [400, 700, 8]}, "theta": {"range": [100, 180, 0.05]}, "grid": 300,
+                        "max_bounces": 3},
                        **tables),
     }
 
@@ -109,7 +110,7 @@ def test_volume_table_conserves_energy(tmp_path):
     # 0.01° quadrature of the 50 µm drop's forward peak (width ~λ/2a ≈ 0.3°) is good to
     # well below 0.5 %.
     scene = strip_scene([{"shape": "sphere", "radius": 5e-5, "density": 1e5, "method": "mie"}],
-                        theta=[0, 180, 0.01], wavelengths=[450, 650, 3])
+                        theta={"range": [0, 180, 0.01]}, wavelengths=[450, 550, 650])
     table = sky.volume_table(scene, cache_dir=tmp_path)
     th = np.radians(table.theta)
     for l, nm in enumerate(table.wavelengths):
@@ -125,7 +126,8 @@ def test_ray_tables_scatter_what_the_drops_intercept(tmp_path):
     # drops intercept.  Integrated by the 0.02° trapezoid rule over a coherent table whose
     # fringes (~0.1° at 500 µm) it resolves; 2 % covers the caustics' spikes.
     scene = strip_scene([{"shape": "sphere", "radius": 5e-4, "density": 10, "method": "rays"}],
-                        theta=[0, 180, 0.02], wavelengths=[550, 650, 2], max_bounces=15, grid=400)
+                        theta={"range": [0, 180, 0.02]}, wavelengths=[550, 650], max_bounces=15,
+                        grid=400)
     table = sky.volume_table(scene, cache_dir=tmp_path)
     th = np.radians(table.theta)
     for l in range(table.wavelengths.size):
@@ -154,7 +156,8 @@ def test_marshall_palmer_bins_hold_the_rain_rate_s_drops():
     (lambda s: s["rain"].update(populations=[]), "non-empty list"),
     (lambda s: s["rain"]["populations"][0].update(density=-1), "density"),
     (lambda s: s["sun"].update(elevation_deg=-2), "below the horizon"),
-    (lambda s: s["tables"].update(wavelengths=[150, 700, 4]), "wavelength"),
+    (lambda s: s["tables"].update(wavelengths={"linspace": [150, 700, 4]}), "wavelength"),
+    (lambda s: s["tables"].update(theta=[100, 120, 180]), "uniform"),
     (lambda s: s["rain"].update(box_min=[0, 0]), "box_min"),
     (lambda s: s["rain"]["populations"][0].update(shape="cube"), "shape"),
     (lambda s: s["rain"]["populations"][0].update(distribution="weibull", bins=3), "distribution"),

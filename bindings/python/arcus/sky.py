@@ -79,31 +79,33 @@ def load_scene(scene):
         raise ArgumentError("the scene %s is not valid JSON: %s" % (path, e)) from None
 
 
+def _axis(tables, key, default):
+    """A table axis of a scene: a list, or {"linspace": [first, last, count]} or
+    {"range": [first, last, step]} (as sweep specs write them)."""
+    from .sweep import spec_axis
+    values = np.asarray(spec_axis(tables.get(key, default), "tables." + key), dtype=float).ravel()
+    if values.size == 0 or not np.all(np.isfinite(values)) or np.any(np.diff(values) <= 0):
+        raise ArgumentError("tables: '%s' must be finite and strictly increasing, got %r" % (key, tables.get(key)))
+    return values
+
+
 def wavelengths_of(tables):
-    """The table wavelengths [nm] of a scene's ``tables``: [first, last, count] or a list."""
-    w = tables.get("wavelengths", [380, 700, 33])
-    if isinstance(w, list) and len(w) == 3 and isinstance(w[2], int) and w[2] >= 1 and w[2] != w[1]:
-        if w[2] == 1:
-            return np.array([float(w[0])])
-        grid = np.linspace(float(w[0]), float(w[1]), w[2])
-    else:
-        grid = np.asarray(w, dtype=float).ravel()
-    if grid.size == 0 or not np.all(np.isfinite(grid)) or np.any(np.diff(grid) <= 0) or grid[0] <= 0:
-        raise ArgumentError("tables: 'wavelengths' must be [first, last, count] or strictly increasing "
-                            "positive numbers (nm), got %r" % (w,))
-    return grid
+    """The table wavelengths [nm] of a scene's ``tables``."""
+    wl = _axis(tables, "wavelengths", {"linspace": [380, 700, 33]})
+    if wl[0] <= 0:
+        raise ArgumentError("tables: 'wavelengths' must be positive (nm), got %r" % (tables.get("wavelengths"),))
+    return wl
 
 
 def theta_of(tables):
-    """The table's uniform θ samples [deg] from ``tables.theta`` = [first, last, step]."""
-    t = tables.get("theta", [100.0, 180.0, 0.05])
-    if not (isinstance(t, list) and len(t) == 3 and all(isinstance(x, (int, float)) for x in t)):
-        raise ArgumentError("tables: 'theta' must be [first, last, step] in degrees, got %r" % (t,))
-    first, last, step = map(float, t)
-    if not (0 <= first < last <= 180 and step > 0):
-        raise ArgumentError("tables: 'theta' must satisfy 0 <= first < last <= 180 and step > 0, got %r" % (t,))
-    n = int(round((last - first) / step)) + 1
-    return np.linspace(first, last, n)
+    """The table's uniform θ samples [deg] within [0, 180] (the renderer interpolates
+    them as a uniform grid)."""
+    theta = _axis(tables, "theta", {"range": [100, 180, 0.05]})
+    step = np.diff(theta)
+    if theta.size < 2 or theta[0] < 0 or theta[-1] > 180 or np.ptp(step) > 1e-9 * (theta[-1] - theta[0]):
+        raise ArgumentError("tables: 'theta' must be at least two uniform samples within [0, 180] degrees, got %r"
+                            % (tables.get("theta"),))
+    return theta
 
 
 def light_frame(sun_elevation_deg, sun_azimuth_deg):

@@ -810,7 +810,7 @@ def frames(scene, parameter, values, *, width=None, height=None, techniques=None
 # ---- sweeps described in JSON (apps/sweep/arcus_sweep.py) ------------------------------------
 
 
-def _spec_axis(value, name):
+def spec_axis(value, name):
     """An axis of a JSON spec: a list of values, one value, {"linspace": [first, last,
     count]} or {"range": [first, last, step]} (last included when the steps reach it,
     as the ocean's wavelength grids)."""
@@ -835,7 +835,7 @@ def _spec_axis(value, name):
     return value
 
 
-#: Keys of each kind of JSON spec: the function's arguments, with axes by _spec_axis.
+#: Keys of each kind of JSON spec: the function's arguments, with axes by spec_axis.
 SPEC_KINDS = dict(
     phase_tables=(phase_tables, ("particles", "wavelengths", "theta"), ("phi", "grid", "max_bounces"),
                   ("wavelengths", "theta", "phi")),
@@ -869,7 +869,7 @@ def run_spec(spec, *, base_dir=".", **options):
         raise ArgumentError("spec: kind %r needs %s" % (kind, ", ".join(map(repr, missing))))
     for k in axes:
         if k in args:
-            args[k] = _spec_axis(args[k], "spec." + k)
+            args[k] = spec_axis(args[k], "spec." + k)
 
     def resolve(path):
         return path if not isinstance(path, str) or os.path.isabs(path) else os.path.join(base_dir, path)
