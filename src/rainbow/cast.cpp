@@ -340,6 +340,11 @@ std::unique_ptr<RainbowJob> cast(arcus_context_t* ctx, const Particle& particle,
               out[1] = mid[1];
             }
           }
+          // A flat crystal's silhouette is an edge between two faces: a ray exactly on
+          // it meets both at once and its inner light goes astray.  On flat faces every
+          // point carries the same light, so stop a thousandth of the segment inside.
+          if (particle.kind == ARCUS_RAINBOW_SHAPE_MESH && !particle.smooth)
+            for (int a = 0; a < 2; ++a) in[a] += 1e-3 * (points[2 * s + a] - in[a]);
           points[2 * r] = in[0];
           points[2 * r + 1] = in[1];
           edge_points.push_back(in[0]);

@@ -101,16 +101,15 @@ def test_46_degree_halo_from_90_degree_prisms(columns):
 def test_energy_and_normalisation(ctx, columns):
     """Ice does not absorb in the visible, so what the crystals intercept leaves in
     p = 0..P or is still inside after P.  The cast's books per ray balance to rounding
-    without edge rays (checked on 30 orientations to 1e-9); with them (the default)
-    the rays moved onto a flat crystal's silhouette edges lose their p ≥ 1 light, which
-    the table reports as ``lost`` (≈ 1.6% at grid 64, halving with the grid) and the
-    books close with it.  The phase integrates to 1 over the sphere (to rounding: every
+    without edge rays (checked on 30 orientations to 1e-9) and with them (the default:
+    on flat crystals they stop a thousandth of a cell inside the silhouette, so none
+    sits on an edge between two faces; ``lost`` reports any shortfall, 1.6% before).  The phase integrates to 1 over the sphere (to rounding: every
     glint falls in some bin of a 0-180° table), the intercepted area is Cauchy's
     surface/4 within the orientation sampling's error, and extinction twice that."""
     t = columns
     books = t["cross_section"] + (t["remaining"] + t["lost"]) * t["intercepted"]
     assert books == pytest.approx(t["intercepted"], rel=1e-9)
-    assert 0 <= t["lost"] < 0.025
+    assert abs(t["lost"]) < 1e-5
     assert 0 <= t["remaining"] < 0.02  # P = 8 lets nearly everything out
     assert t["extinction"] == pytest.approx(2 * t["intercepted"], rel=1e-15)
     integral = float(np.sum(t["phase"] * solid_angles(THETA, STEP)) * 2 * np.pi)
@@ -142,9 +141,9 @@ def fresnel(cos_i, n):
 def test_flat_face_glints_match_fresnel(ctx):
     """One orientation: each lit face's external reflection (p = 0) is one glint whose
     power is the face's shadow times Fresnel's reflectance, the same for every ray, so
-    the grid only enters through the area it assigns the face: within 1.5% per face on
-    the default grid (O(1/grid): the cells on the faces' boundaries) and 1% for their
-    sum (the faces' reflectances differ, so a misplaced boundary shifts the sum too)."""
+    the grid only enters through the area it assigns the face: within 2% per face on
+    the default grid (O(1/grid) = 1.6%: the cells on the faces' boundaries) and 1/grid for
+    their sum (the faces' reflectances differ, so a misplaced boundary shifts the sum too)."""
     rotation = halo.orientations(dict(COLUMNS, orientations=1, seed=11))[0]
     size = COLUMNS["size"]
     vertices, triangles = halo.hexagonal_prism(halo.SHAPES["column"])
@@ -170,8 +169,8 @@ def test_flat_face_glints_match_fresnel(ctx):
             got[key] = got.get(key, 0) + cross * scale
     assert sorted(got) == sorted(expected) and len(expected) >= 2
     for key, value in expected.items():
-        assert got[key] == pytest.approx(value, rel=0.015), key
-    assert sum(got.values()) == pytest.approx(sum(expected.values()), rel=0.01)
+        assert got[key] == pytest.approx(value, rel=0.02), key
+    assert sum(got.values()) == pytest.approx(sum(expected.values()), rel=1 / halo.GRID)
 
 
 def parhelion(n, elevation_deg):

@@ -337,11 +337,10 @@ def crystal_table(spec, wavelength, theta, phi=None, *, grid=GRID, max_bounces=M
         grid: rays per side of each orientation's cast (see :data:`GRID`).
         max_bounces: P, terms p = 0..P (p − 1 internal reflections).
         edge_rays: arcus.rainbow's: grid points just outside the shadow move onto its
-            edge.  On (the default) the shares of the faces' light are right to about 1%
-            at grid 64, but those rays, sitting on a crystal's edges, lose their p ≥ 1
-            light (``lost``, about 1.6% for columns, 2-3% for plates); off, the books
-            close exactly but the cells along the silhouette are left out, which biases
-            the terms' shares by a few % (p = 1 +2.6% for columns at grid 64).
+            edge (on flat faces a thousandth of a cell inside it).  On (the default) the
+            shares of the faces' light are right to about 1% at grid 64 and the books
+            close; off, the cells along the silhouette are left out, which biases the
+            terms' shares by a few % (p = 1 +2.6% for columns at grid 64).
         context: an arcus.Context, reused for every orientation (else a new one).
 
     Returns a dict:
@@ -358,8 +357,8 @@ def crystal_table(spec, wavelength, theta, phi=None, *, grid=GRID, max_bounces=M
         extinction: [m²] 2 × intercepted (the other half is diffraction, not in ``phase``).
         remaining: the fraction of the intercepted power still inside after P (weighted by
             projected area).
-        lost: the fraction of the intercepted power the cast lost at its edge rays (see
-            ``edge_rays``): cross_section + (remaining + lost) · intercepted = intercepted.
+        lost: the fraction of the intercepted power the cast's books miss (rounding:
+            below 1e-5): cross_section + (remaining + lost) · intercepted = intercepted.
         theta, phi, wavelength, refractive_index, spec (normalised), grid, max_bounces,
         seconds, and cast_area_ratio: the cast's intercepted area over the exact one
         (the grid's silhouette loss, corrected for: see below).
