@@ -9,25 +9,11 @@
 #include <vector>
 
 #include "arcus/arcus.h"
+#include "test_util.h"
+
+using namespace arcus_test;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-struct Ctx {
-  arcus_context_t* ctx = nullptr;
-  Ctx() { EXPECT_EQ(arcus_context_create(ARCUS_DEVICE_DEFAULT, &ctx), ARCUS_SUCCESS) << arcus_last_error(); }
-  ~Ctx() {
-    if (ctx) arcus_context_release(ctx);
-  }
-};
-
-struct Job {
-  arcus_job_t* job = nullptr;
-  ~Job() {
-    if (job) arcus_job_release(job);
-  }
-};
 
 // A table of `count` wavelengths, constant β and σ_e (φ_count azimuths; β_of_phi may
 // shape it over φ).
@@ -73,18 +59,21 @@ struct Sky {
 
 std::vector<float> render_y(arcus_context_t* ctx, const Table& t, const Sky& s, float* theta = nullptr,
                             arcus_features* features = nullptr) {
-  Job j;
-  EXPECT_EQ(arcus_rainbow_render(ctx, &t.t, &s.s, &j.job), ARCUS_SUCCESS) << arcus_context_last_error(ctx);
+  arcus_job_t* raw = nullptr;
+  EXPECT_EQ(arcus_rainbow_render(ctx, &t.t, &s.s, &raw), ARCUS_SUCCESS) << arcus_context_last_error(ctx);
+  const JobPtr j(raw);
   const size_t n = size_t(s.s.width) * s.s.height;
   std::vector<float> xyz(3 * n), y(n), th(n);
-  EXPECT_EQ(arcus_job_get_rainbow_image(j.job, nullptr, nullptr, xyz.data(), nullptr, th.data()), ARCUS_SUCCESS);
+  EXPECT_EQ(arcus_job_get_rainbow_image(j.get(), nullptr, nullptr, xyz.data(), nullptr, th.data()), ARCUS_SUCCESS);
   for (size_t p = 0; p < n; ++p) y[p] = xyz[3 * p + 1];
   if (theta) *theta = th[0];
   if (features) {
-    EXPECT_EQ(arcus_job_get_features(j.job, features), ARCUS_SUCCESS);
+    EXPECT_EQ(arcus_job_get_features(j.get(), features), ARCUS_SUCCESS);
   }
   return y;
 }
+
+class RainbowSky : public ArcusTest {};
 
 }  // namespace
 
@@ -94,15 +83,14 @@ std::vector<float> render_y(arcus_context_t* ctx, const Table& t, const Sky& s, 
 // A flat spectrum of 1 has Y = 1 (the band weights), so Y is that radiance.  Midpoint
 // rule with 2048 steps: relative error (σ Δt)²/24 ≈ 1e-8; the image is float32 (6e-8),
 // so 1e-6 bounds both.
-TEST(RainbowSky, MarchMatchesTheClosedFormUnderAZenithSun) {
-  Ctx c;
+TEST_F(RainbowSky, MarchMatchesTheClosedFormUnderAZenithSun) {
   const double beta = 2e-4, sigma = 1e-3, sky = 0.3;
   Table t(8, beta, sigma);
   Sky s(8, sky);
   s.s.sun_elevation_deg = 90;
   s.s.march_steps = 2048;
   float theta = 0;
-  const auto y = render_y(c.ctx, t, s, &theta);
+  const auto y = render_y(ctx(), t, s, &theta);
   const double expected = beta * std::exp(-sigma * 98.3) * (1 - std::exp(-sigma * 1000)) / sigma +
                           sky * std::exp(-sigma * 1000);
   EXPECT_NEAR(y[0], expected, 1e-6 * expected);
@@ -114,8 +102,7 @@ TEST(RainbowSky, MarchMatchesTheClosedFormUnderAZenithSun) {
 // form mid-ray, which the kernel's one-exp-per-face sequence must follow.  Reference: the
 // same integral by the trapezoid rule on 10⁶ intervals (error ~1e-12), independent of
 // the kernel; the march's 4096 midpoints err by ~(σΔt)²/24 ≈ 2e-9 relative.
-TEST(RainbowSky, MarchFollowsTheSunsExitFaceAlongTheRay) {
-  Ctx c;
+TEST_F(RainbowSky, MarchFollowsTheSunsExitFaceAlongTheRay) {
   const double beta = 1e-4, sigma = 2e-3;
   Table t(4, beta, sigma);
   Sky s(4, 0.0);
@@ -123,7 +110,7 @@ TEST(RainbowSky, MarchFollowsTheSunsExitFaceAlongTheRay) {
   s.s.sun_azimuth_deg = 180;
   s.s.march_steps = 4096;
   float theta = 0;
-  const auto y = render_y(c.ctx, t, s, &theta);
+  const auto y = render_y(ctx(), t, s, &theta);
   const double se = 0.5, sz = -std::sqrt(3.0) / 2;
   auto f = [&](double z) {
     const double path = std::min((100 - 1.7) / se, (100 - z) / sz);
@@ -140,8 +127,7 @@ TEST(RainbowSky, MarchFollowsTheSunsExitFaceAlongTheRay) {
 // β only for φ in [180°, 360°): light leaving downward across the light (φ = 270° is
 // straight down).  A drop above the antisolar point sends light down to the camera, so
 // the pixel looking above it is lit and the one below is dark.
-TEST(RainbowSky, AzimuthIsMeasuredFromTheLightFrameWithYUp) {
-  Ctx c;
+TEST_F(RainbowSky, AzimuthIsMeasuredFromTheLightFrameWithYUp) {
   Table t(4, 1e-4, 1e-4, 8, [](double phi) { return phi >= 180 ? 1.0 : 0.0; });
   Sky s(4, 0.0);
   s.s.sun_elevation_deg = 0;
@@ -151,29 +137,27 @@ TEST(RainbowSky, AzimuthIsMeasuredFromTheLightFrameWithYUp) {
   s.s.camera_position[1] = 50;  // inside the slab: both rows cross rain
   s.s.camera_position[2] = 200;
   arcus_features features = 0;
-  const auto y = render_y(c.ctx, t, s, nullptr, &features);
+  const auto y = render_y(ctx(), t, s, nullptr, &features);
   EXPECT_GT(y[0], 0.0f);         // top row: looking up
   EXPECT_EQ(y[2], 0.0f);         // bottom row: looking down
   EXPECT_TRUE(features & ARCUS_FEATURE_RAINBOW_AZIMUTH);
 }
 
-TEST(RainbowSky, TablesWithoutAzimuthCompileWithoutIt) {
-  Ctx c;
+TEST_F(RainbowSky, TablesWithoutAzimuthCompileWithoutIt) {
   Table t(4, 1e-4, 1e-4);
   Sky s(4, 0.0);
   arcus_features features = ~arcus_features(0);
-  render_y(c.ctx, t, s, nullptr, &features);
+  render_y(ctx(), t, s, nullptr, &features);
   EXPECT_EQ(features, arcus_features(0));
 }
 
-TEST(RainbowSky, BadInputIsRefusedWithAReason) {
-  Ctx c;
+TEST_F(RainbowSky, BadInputIsRefusedWithAReason) {
   auto refused = [&](const Table& t, const Sky& s, const std::string& words) {
-    Job j;
-    EXPECT_EQ(arcus_rainbow_render(c.ctx, &t.t, &s.s, &j.job), ARCUS_ERROR_INVALID_ARGUMENT) << words;
-    EXPECT_NE(std::string(arcus_context_last_error(c.ctx)).find(words), std::string::npos)
-        << arcus_context_last_error(c.ctx);
-    EXPECT_EQ(j.job, nullptr);
+    arcus_job_t* job = nullptr;
+    EXPECT_EQ(arcus_rainbow_render(ctx(), &t.t, &s.s, &job), ARCUS_ERROR_INVALID_ARGUMENT) << words;
+    EXPECT_NE(std::string(arcus_context_last_error(ctx())).find(words), std::string::npos)
+        << arcus_context_last_error(ctx());
+    EXPECT_EQ(job, nullptr);
   };
   {
     Table t(4, 1e-4, 1e-4);
