@@ -25,7 +25,8 @@ from ._args import to_path
 from ._errors import ArgumentError
 from ._lib import lib
 
-__all__ = ["SkyImage", "load_scene", "populations", "volume_table", "render", "light_frame"]
+__all__ = ["SkyImage", "VolumeTable", "load_scene", "populations", "volume_table", "sky_parameters", "render", "export",
+           "light_frame", "upright_rotation"]
 
 # Hansen & Travis (1974), eq. 2.30 with Bucholtz (1995): the Rayleigh optical depth of the
 # whole atmosphere at sea level, λ in µm; a sun seen through `airmass` atmospheres is
@@ -317,6 +318,70 @@ class SkyImage:
     seconds: dict
 
 
+def sky_parameters(scene, wavelengths, *, width=None, height=None, sun_samples=None, march_steps=None):
+    """The members of ``arcus_rainbow_sky`` for a scene at the table's wavelengths, as a
+    dict of numbers, 3-vectors and spectra (what :func:`render` passes the library and
+    :func:`export` writes for arcus_view)."""
+    scene = load_scene(scene)
+    img, cam, sun, rain = (scene.get(k, {}) for k in ("image", "camera", "sun", "rain"))
+    for name, part in (("image", img), ("camera", cam), ("sun", sun), ("rain", rain)):
+        if not isinstance(part, dict):
+            raise ArgumentError("scene: '%s' must be an object" % name)
+    look_a = math.radians(_number(cam, "look_azimuth_deg", 0.0, where="camera"))
+    look_e = math.radians(_number(cam, "look_elevation_deg", 20.0, -89, 89, "camera"))
+    background = scene.get("background", {})
+    return dict(
+        width=int(width or _number(img, "width", 800, 1, 16384, "image")),
+        height=int(height or _number(img, "height", 600, 1, 16384, "image")),
+        camera_position=_vector(cam, "position", [0.0, 1.7, 0.0], "camera"),
+        camera_forward=[math.cos(look_e) * math.sin(look_a), math.sin(look_e), math.cos(look_e) * math.cos(look_a)],
+        camera_up=[0.0, 1.0, 0.0],
+        fov_deg=_number(img, "fov_deg", 90.0, where="image"),
+        sun_elevation_deg=_number(sun, "elevation_deg", 10.0, where="sun"),
+        sun_azimuth_deg=_number(sun, "azimuth_deg", 180.0, where="sun"),
+        sun_diameter_deg=_number(sun, "diameter_deg", 0.53, where="sun"),
+        sun_samples=int(sun_samples or _number(sun, "samples", 16, 1, 4096, "sun")),
+        sun_irradiance=sun_spectrum(sun, wavelengths),
+        sky_radiance=_spectrum(background.get("sky"), wavelengths, "background.sky", 0.0),
+        ground_radiance=_spectrum(background.get("ground"), wavelengths, "background.ground", 0.0),
+        rain_min=_vector(rain, "box_min", None, "rain"),
+        rain_max=_vector(rain, "box_max", None, "rain"),
+        march_steps=int(march_steps or _number(rain, "march_steps", 32, 1, 100000, "rain")),
+        exposure=_number(img, "exposure", 0.0, low=0, where="image"))
+
+
+def _check_sun(scene):
+    # Checked before any table is computed (the library checks it again for C callers).
+    sun = load_scene(scene).get("sun", {})
+    if isinstance(sun, dict) and _number(sun, "elevation_deg", 10.0, where="sun") < 0:
+        raise ArgumentError("sun: the sun is below the horizon (elevation_deg %g): it lights no rain in front "
+                            "of the camera, so no rainbow forms; raise it to 0 or above" % sun["elevation_deg"])
+
+
+def export(scene, path, *, table=None, cache_dir=None, client="serial", workers=None):
+    """Writes a scene with its volume table for ``arcus_view`` (which has no Python to
+    build tables): ``path`` (JSON: ``"arcus_rainbow_sky": 1``, the sky's members and the
+    table's axes and extinction) and ``path + ".beta"`` (β as little-endian float64,
+    wavelength × φ × θ).  Returns the :class:`VolumeTable`."""
+    scene = load_scene(scene)
+    _check_sun(scene)
+    if table is None:
+        table = volume_table(scene, cache_dir=cache_dir, client=client, workers=workers)
+    params = {k: (v.tolist() if isinstance(v, np.ndarray) else v)
+              for k, v in sky_parameters(scene, table.wavelengths).items()}
+    path = os.fspath(path)
+    beta_file = path + ".beta"
+    np.ascontiguousarray(table.beta, dtype="<f8").tofile(beta_file)
+    doc = {"arcus_rainbow_sky": 1, "description": scene.get("description", ""), "sky": params,
+           "table": {"beta_file": os.path.basename(beta_file), "wavelengths_nm": table.wavelengths.tolist(),
+                     "theta_first_deg": float(table.theta[0]), "theta_last_deg": float(table.theta[-1]),
+                     "theta_count": int(table.theta.size), "phi_count": int(table.phi.size),
+                     "extinction": np.asarray(table.extinction).tolist()}}
+    with open(path, "w") as f:
+        json.dump(doc, f, indent=1)
+    return table
+
+
 def render(scene, *, exr=None, png=None, table=None, width=None, height=None, sun_samples=None, march_steps=None,
            cache_dir=None, client="serial", workers=None, progress=None, context=None):
     """Renders a rainbow scene (dict or JSON path): a :class:`SkyImage`; writes ``exr``
@@ -327,43 +392,24 @@ def render(scene, *, exr=None, png=None, table=None, width=None, height=None, su
     from .rainbow import _context
 
     scene = load_scene(scene)
-    img, cam, sun, rain = (scene.get(k, {}) for k in ("image", "camera", "sun", "rain"))
-    for name, part in (("image", img), ("camera", cam), ("sun", sun), ("rain", rain)):
-        if not isinstance(part, dict):
-            raise ArgumentError("scene: '%s' must be an object" % name)
-    # Checked before any table is computed (the library checks it again for C callers).
-    if _number(sun, "elevation_deg", 10.0, where="sun") < 0:
-        raise ArgumentError("sun: the sun is below the horizon (elevation_deg %g): it lights no rain in front "
-                            "of the camera, so no rainbow forms; raise it to 0 or above" % sun["elevation_deg"])
+    _check_sun(scene)
+    sky_parameters(scene, np.array([550.0]))  # the scene's errors before any table is computed
     if table is None:
         table = volume_table(scene, cache_dir=cache_dir, client=client, workers=workers,
                              progress=progress is not None)
     wl = table.wavelengths
+    params = sky_parameters(scene, wl, width=width, height=height, sun_samples=sun_samples, march_steps=march_steps)
     sky = _lib.RainbowSkyStruct()
     _lib.check(lib.arcus_rainbow_sky_init(byref(sky)))
-    sky.width = int(width or _number(img, "width", 800, 1, 16384, "image"))
-    sky.height = int(height or _number(img, "height", 600, 1, 16384, "image"))
-    sky.fov_deg = _number(img, "fov_deg", 90.0, where="image")
-    sky.exposure = _number(img, "exposure", 0.0, low=0, where="image")
-    pos = _vector(cam, "position", [0.0, 1.7, 0.0], "camera")
-    look_a = math.radians(_number(cam, "look_azimuth_deg", 0.0, where="camera"))
-    look_e = math.radians(_number(cam, "look_elevation_deg", 20.0, -89, 89, "camera"))
-    forward = [math.cos(look_e) * math.sin(look_a), math.sin(look_e), math.cos(look_e) * math.cos(look_a)]
-    for i in range(3):
-        sky.camera_position[i], sky.camera_forward[i], sky.camera_up[i] = pos[i], forward[i], (0.0, 1.0, 0.0)[i]
-    sky.sun_elevation_deg = _number(sun, "elevation_deg", 10.0, where="sun")
-    sky.sun_azimuth_deg = _number(sun, "azimuth_deg", 180.0, where="sun")
-    sky.sun_diameter_deg = _number(sun, "diameter_deg", 0.53, where="sun")
-    sky.sun_samples = int(sun_samples or _number(sun, "samples", 16, 1, 4096, "sun"))
-    lo, hi = _vector(rain, "box_min", None, "rain"), _vector(rain, "box_max", None, "rain")
-    for i in range(3):
-        sky.rain_min[i], sky.rain_max[i] = lo[i], hi[i]
-    sky.march_steps = int(march_steps or _number(rain, "march_steps", 32, 1, 100000, "rain"))
-    background = scene.get("background", {})
-    sun_e = sun_spectrum(sun, wl)
-    sky_l = _spectrum(background.get("sky"), wl, "background.sky", 0.0)
-    ground_l = _spectrum(background.get("ground"), wl, "background.ground", 0.0)
-    sky.sun_irradiance, sky.sky_radiance, sky.ground_radiance = _lib.ptr(sun_e), _lib.ptr(sky_l), _lib.ptr(ground_l)
+    spectra = {k: np.ascontiguousarray(params.pop(k), dtype=float)
+               for k in ("sun_irradiance", "sky_radiance", "ground_radiance")}
+    for key, value in params.items():
+        if isinstance(value, list):
+            getattr(sky, key)[:] = value
+        else:
+            setattr(sky, key, value)
+    for key, value in spectra.items():
+        setattr(sky, key, _lib.ptr(value))
     from .context import _check_progress
     _check_progress(progress)
 
