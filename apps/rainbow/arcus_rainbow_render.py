@@ -11,6 +11,7 @@ Examples:
   arcus_rainbow_render.py scenes/rainbow/double_bow.json -o out/rainbow/double_bow.exr --png out/rainbow/double_bow.png
   arcus_rainbow_render.py scenes/rainbow/twinned.json --png twinned.png --workers 2
   arcus_rainbow_render.py scenes/rainbow/cloudbow.json --png cloudbow.png --scheduler tcp://10.0.0.5:8786
+  arcus_rainbow_render.py scenes/rainbow/halo.json --export-view out/halo.sky.json && build/arcus_view out/halo.sky.json
 """
 
 import argparse
@@ -59,16 +60,19 @@ def parser():
     p.add_argument("--cache", help="the phase-table cache (default: $ARCUS_CACHE_DIR or ~/.cache/arcus/tables)")
     p.add_argument("--workers", type=int, help="compute missing tables on a local Dask cluster of N workers")
     p.add_argument("--scheduler", help="compute missing tables on this Dask scheduler (tcp://host:8786)")
+    p.add_argument("--export-view", metavar="PATH",
+                   help="also write the scene with its table for the live preview (build/arcus_view PATH)")
     p.add_argument("--quiet", action="store_true", help="no progress bars")
     return p
 
 
 def main(argv=None):
     args = parser().parse_args(sys.argv[1:] if argv is None else argv)
-    if args.exr is None and args.png is None:
-        print("arcus_rainbow_render: nothing to write: give -o OUT.exr and/or --png OUT.png", file=sys.stderr)
+    if args.exr is None and args.png is None and args.export_view is None:
+        print("arcus_rainbow_render: nothing to write: give -o OUT.exr, --png OUT.png or --export-view PATH",
+              file=sys.stderr)
         return EXIT_ERROR
-    for path in (args.exr, args.png):
+    for path in (args.exr, args.png, args.export_view):
         if path:
             Path(path).parent.mkdir(parents=True, exist_ok=True)
     client = args.scheduler if args.scheduler else (None if args.workers else "serial")
@@ -77,6 +81,8 @@ def main(argv=None):
         result = sky.render(args.scene, exr=args.exr, png=args.png, width=args.width, height=args.height,
                             sun_samples=args.sun_samples, march_steps=args.march_steps, cache_dir=args.cache,
                             client=client, workers=args.workers, progress=bar if not args.quiet else None)
+        if args.export_view:
+            sky.export(args.scene, args.export_view, table=result.table)
     except arcus.Error as exc:
         bar.close()
         print("arcus_rainbow_render: %s" % exc.message, file=sys.stderr)
@@ -91,7 +97,7 @@ def main(argv=None):
           "features: %s" % (args.scene, result.image.shape[1], result.image.shape[0], t.wavelengths.size,
                             t.computed + t.cached, t.computed, t.cached, result.seconds["table"],
                             result.seconds["render"], " ".join(sorted(result.features)) or "none"))
-    for path in (args.exr, args.png):
+    for path in (args.exr, args.png, args.export_view):
         if path:
             print("wrote %s" % Path(path).resolve())
     return 0
