@@ -179,7 +179,9 @@ def test_cache_never_trusts_a_damaged_file(serial, tmp_path):
 
 def test_default_cache_dir(monkeypatch, tmp_path):
     monkeypatch.setenv("ARCUS_CACHE_DIR", str(tmp_path / "a"))
-    assert sweep.default_cache_dir() == str(tmp_path / "a")
+    assert sweep.default_cache_dir() == os.path.join(str(tmp_path / "a"), "tables")  # beside the programs
+    monkeypatch.setenv("ARCUS_CACHE_DIR", "off")
+    assert sweep.default_cache_dir() is False
     monkeypatch.delenv("ARCUS_CACHE_DIR")
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "x"))
     assert sweep.default_cache_dir() == os.path.join(str(tmp_path / "x"), "arcus", "tables")

@@ -25,8 +25,9 @@ Each worker thread keeps one :class:`arcus.Context`.  Results are cached on disk
 ``.npz`` per task named by the SHA-256 of the task's canonical JSON (with the task
 function's name and arcus' version), so a re-run, or a sweep interrupted or cut short
 by a failed task, computes only what is missing.  The cache lies in ``cache_dir``
-(default: ``$ARCUS_CACHE_DIR``, else ``$XDG_CACHE_HOME/arcus/tables``, else
-``~/.cache/arcus/tables``; ``False``: none).  A file that is missing, truncated,
+(default: ``tables/`` in the library's program cache — ``$ARCUS_CACHE_DIR/tables``,
+else ``$XDG_CACHE_HOME/arcus/tables``, else ``~/.cache/arcus/tables``;
+``ARCUS_CACHE_DIR=off`` or ``False``: none).  A file that is missing, truncated,
 unreadable, of another key or whose checksum does not match its arrays is recomputed
 and overwritten, never trusted.  A task's key covers its JSON, not the contents of
 files a render scene names (meshes, textures): clear the cache when those change.
@@ -94,10 +95,12 @@ def _canonical(value):
 
 
 def default_cache_dir():
-    """The cache directory when none is given: ``$ARCUS_CACHE_DIR``, else
-    ``$XDG_CACHE_HOME/arcus/tables``, else ``~/.cache/arcus/tables``."""
+    """The cache directory when none is given: ``tables/`` beside the library's compiled
+    programs (``$ARCUS_CACHE_DIR``, else ``$XDG_CACHE_HOME/arcus``, else
+    ``~/.cache/arcus``); False when ``ARCUS_CACHE_DIR=off`` turns caching off."""
     if os.environ.get("ARCUS_CACHE_DIR"):
-        return os.environ["ARCUS_CACHE_DIR"]
+        env = os.environ["ARCUS_CACHE_DIR"]
+        return False if env == "off" else os.path.join(env, "tables")
     base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
     return os.path.join(base, "arcus", "tables")
 
@@ -335,6 +338,8 @@ def map_tasks(function, specs, *, cache_dir=None, client=None, workers=None, pro
     if not isinstance(specs, (list, tuple)):
         raise ArgumentError("specs must be a list of task dicts, got %r" % (type(specs),))
     specs = [_plain(s, "specs[%d]" % i) for i, s in enumerate(specs)]
+    if cache_dir is None:
+        cache_dir = default_cache_dir()
     if cache_dir is False:
         cache = _Cache(None)
     else:
