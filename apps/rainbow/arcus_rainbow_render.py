@@ -82,7 +82,8 @@ def main(argv=None):
                             sun_samples=args.sun_samples, march_steps=args.march_steps, cache_dir=args.cache,
                             client=client, workers=args.workers, progress=bar if not args.quiet else None)
         if args.export_view:
-            sky.export(args.scene, args.export_view, table=result.table)
+            sky.export(args.scene, args.export_view, table=result.table, width=args.width, height=args.height,
+                       sun_samples=args.sun_samples, march_steps=args.march_steps)
     except arcus.Error as exc:
         bar.close()
         print("arcus_rainbow_render: %s" % exc.message, file=sys.stderr)

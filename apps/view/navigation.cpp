@@ -1,5 +1,6 @@
 #include "navigation.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace arcus_view {
@@ -58,5 +59,19 @@ void move(arcus_camera& camera, double forward, double right) {
   store(eye + shift, camera.position);
   store(load(camera.look_at) + shift, camera.look_at);
 }
+
+void look(arcus_rainbow_sky& sky, double right, double up) {
+  // Azimuth from +z toward +x (the library's, which puts +x on the right of a camera
+  // looking along +z) and elevation above the horizon.
+  const V3 f = load(sky.camera_forward);
+  const double limit = 89.0 * M_PI / 180.0;
+  const double azimuth = std::atan2(f.x, f.z) + right;
+  const double elevation = std::clamp(std::atan2(f.y, std::hypot(f.x, f.z)) + up, -limit, limit);
+  store({std::cos(elevation) * std::sin(azimuth), std::sin(elevation), std::cos(elevation) * std::cos(azimuth)},
+        sky.camera_forward);
+  store({0, 1, 0}, sky.camera_up);
+}
+
+void zoom(arcus_rainbow_sky& sky, double factor) { sky.fov_deg = std::clamp(sky.fov_deg * factor, 5.0, 150.0); }
 
 }  // namespace arcus_view

@@ -1,5 +1,6 @@
-// Camera moves of arcus_view, pure geometry on arcus_camera (no GL, no library calls),
-// so the window's input handlers can apply them while a frame renders.
+// Camera moves of arcus_view, pure geometry on arcus_camera and on the camera of an
+// arcus_rainbow_sky (no GL, no library calls), so the window's input handlers can apply
+// them while a frame renders.
 #pragma once
 
 #include "arcus/arcus.h"
@@ -20,5 +21,14 @@ void turn(arcus_camera& camera, double yaw, double pitch);
 // `right` to the side, each a fraction of the distance to look_at, so the orbit
 // radius and with it the step size stay the same.
 void move(arcus_camera& camera, double forward, double right);
+
+// Rainbow skies: the camera stays where it is and looks about.  Turns camera_forward by
+// `right` about the world's up (0, 1, 0) and by `up` about the camera's right axis
+// (radians; positive: to the right, up), holding the view's elevation within ±89°, and
+// sets camera_up to the world's up (a level horizon).
+void look(arcus_rainbow_sky& sky, double right, double up);
+
+// Multiplies the field of view by `factor`, held within 5°-150°.
+void zoom(arcus_rainbow_sky& sky, double factor);
 
 }  // namespace arcus_view

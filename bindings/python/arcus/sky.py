@@ -358,17 +358,20 @@ def _check_sun(scene):
                             "of the camera, so no rainbow forms; raise it to 0 or above" % sun["elevation_deg"])
 
 
-def export(scene, path, *, table=None, cache_dir=None, client="serial", workers=None):
+def export(scene, path, *, table=None, width=None, height=None, sun_samples=None, march_steps=None, cache_dir=None,
+           client="serial", workers=None):
     """Writes a scene with its volume table for ``arcus_view`` (which has no Python to
     build tables): ``path`` (JSON: ``"arcus_rainbow_sky": 1``, the sky's members and the
     table's axes and extinction) and ``path + ".beta"`` (β as little-endian float64,
-    wavelength × φ × θ).  Returns the :class:`VolumeTable`."""
+    wavelength × φ × θ).  ``width`` … ``march_steps`` override the scene's, as in
+    :func:`render`.  Returns the :class:`VolumeTable`."""
     scene = load_scene(scene)
     _check_sun(scene)
     if table is None:
         table = volume_table(scene, cache_dir=cache_dir, client=client, workers=workers)
     params = {k: (v.tolist() if isinstance(v, np.ndarray) else v)
-              for k, v in sky_parameters(scene, table.wavelengths).items()}
+              for k, v in sky_parameters(scene, table.wavelengths, width=width, height=height, sun_samples=sun_samples,
+                                         march_steps=march_steps).items()}
     path = os.fspath(path)
     beta_file = path + ".beta"
     np.ascontiguousarray(table.beta, dtype="<f8").tofile(beta_file)
