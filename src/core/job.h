@@ -5,6 +5,8 @@
 
 #include "arcus/arcus_core.h"
 #include "core/handle.h"
+#include "core/layout.h"
+#include "core/runtime.h"
 
 struct arcus_job_s : arcus::Handle {
   arcus_job_s(arcus_context_t* ctx, const char* kind) : Handle(arcus::HandleType::Job, ctx), kind(kind) {}
@@ -13,3 +15,12 @@ struct arcus_job_s : arcus::Handle {
   arcus_features features = 0;
   arcus_job_stats stats{};
 };
+
+namespace arcus {
+struct KernelSource;
+
+// The job's program for its features in `layout`, built or found in the caches, with
+// how it came (build seconds, origin) and the layout recorded in the job's stats.
+BuiltProgram build_job_program(arcus_context_t* ctx, arcus_job_s& job, const KernelSource& source,
+                               const Layout& layout);
+}  // namespace arcus

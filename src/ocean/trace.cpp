@@ -318,11 +318,7 @@ void trace_into(TraceJob* job, arcus_context_t* ctx, const WaterTables& water, c
   DeviceBuffer stored_dev(ctx, stored.size() * sizeof(double), "the stored photons", stored.data());
 
   const Layout layout{1, 1};  // scalar: one photon at a time per work-item (trace.cl)
-  const BuiltProgram built = ctx->runtime->program(trace_source(), job->features, layout);
-  job->stats.build_seconds = built.seconds;
-  job->stats.program_origin = built.origin;
-  job->stats.lanes = layout.lanes;
-  job->stats.groups = layout.groups;
+  const BuiltProgram built = build_job_program(ctx, *job, trace_source(), layout);
   KernelCall kernel(built.program, "arcus_ocean_trace");
   kernel.set(0, &water_dev);
   kernel.set(1, &lights_dev);

@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "core/features.h"
 #include "core/format.h"
+#include "core/job.h"
 #include "core/kernel_source.h"
 #include "core/runtime.h"
 #include "core/slices.h"
@@ -237,11 +238,7 @@ std::unique_ptr<RainbowJob> cast(arcus_context_t* ctx, const Particle& particle,
     }
 
   const Layout layout{1, 1};  // scalar: a ray per work-item (cast.cl)
-  const BuiltProgram built = ctx->runtime->program(kCast, job->features, layout);
-  job->stats.build_seconds = built.seconds;
-  job->stats.program_origin = built.origin;
-  job->stats.lanes = 1;
-  job->stats.groups = 1;
+  const BuiltProgram built = build_job_program(ctx, *job, kCast, layout);
   std::unique_ptr<bvh::DeviceBvh> mesh_bvh;
   std::unique_ptr<DeviceBuffer> normals_dev;
   if (particle.kind == ARCUS_RAINBOW_SHAPE_MESH) mesh_bvh = std::make_unique<bvh::DeviceBvh>(ctx, pl.bvh, false);

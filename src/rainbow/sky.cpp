@@ -10,6 +10,7 @@
 #include "core/context.h"
 #include "core/error.h"
 #include "core/format.h"
+#include "core/job.h"
 #include "core/kernel_source.h"
 #include "core/runtime.h"
 #include "core/slices.h"
@@ -220,11 +221,7 @@ std::unique_ptr<SkyJob> render_sky(arcus_context_t* ctx, const arcus_rainbow_tab
   for (size_t l = 0; l < L; ++l)
     for (int c = 0; c < 3; ++c) weights[3 * l + c] = bands[l][c];
   const Layout layout{1, 1};  // scalar: a pixel per work-item (sky.cl)
-  const BuiltProgram built = ctx->runtime->program(kSky, job->features, layout);
-  job->stats.build_seconds = built.seconds;
-  job->stats.program_origin = built.origin;
-  job->stats.lanes = 1;
-  job->stats.groups = 1;
+  const BuiltProgram built = build_job_program(ctx, *job, kSky, layout);
   DeviceBuffer beta_dev(ctx, beta.size() * sizeof(double), "the disc-averaged table", beta.data());
   DeviceBuffer ext_dev(ctx, L * sizeof(double), "the extinction", t.extinction);
   DeviceBuffer sun_dev(ctx, L * sizeof(double), "the sun's irradiance", s.sun_irradiance);
