@@ -353,31 +353,31 @@ def map_tasks(function, specs, *, cache_dir=None, client=None, workers=None, pro
         if d not in payloads:
             payloads[d] = cache.read(d, k)
     cached = sum(p is not None for p in payloads.values())
-    todo = {}  # digest -> (key, spec), in the order given
+    missing = {}  # the tasks not in the cache: digest -> (key, spec), in the order given
     for d, k, s in zip(digests, keys, specs):
         if payloads[d] is None:
-            todo.setdefault(d, (k, s))
+            missing.setdefault(d, (k, s))
 
     def finish(digest, result):
         payloads[digest] = _payload(result, name)
-        cache.write(digest, todo[digest][0], payloads[digest])
+        cache.write(digest, missing[digest][0], payloads[digest])
 
     errors = []
-    if todo:
+    if missing:
         run = _run_serial if serial else _run_on_dask
-        run(function, {d: s for d, (_, s) in todo.items()}, finish, errors, progress, client=client, workers=workers,
+        run(function, {d: s for d, (_, s) in missing.items()}, finish, errors, progress, client=client, workers=workers,
             connect_timeout=connect_timeout)
     if errors:
-        order = list(todo)
+        order = list(missing)
         digest, exc = min(errors, key=lambda e: order.index(e[0]))
         index = digests.index(digest)
-        others = len(todo) - len(errors)
+        others = len(missing) - len(errors)
         exc.add_note("arcus.sweep: task %d of %d failed: %s(%s); %d of the %d tasks run failed%s"
-                     % (index, len(specs), name, _canonical(specs[index])[:300], len(errors), len(todo),
+                     % (index, len(specs), name, _canonical(specs[index])[:300], len(errors), len(missing),
                         "" if not others else "; the %d others finished%s" % (others, " and are cached"
                                                                                if cache.directory else "")))
         raise exc
-    return TaskResults(results=[payloads[d] for d in digests], computed=len(todo), cached=cached,
+    return TaskResults(results=[payloads[d] for d in digests], computed=len(missing), cached=cached,
                        cache_dir=cache.directory, seconds=time.monotonic() - started)
 
 
