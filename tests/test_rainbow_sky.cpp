@@ -1,10 +1,14 @@
 // Rainbow skies through the public C API (thesis §4.1.4, §5.5.2): the marched single
 // scattering against closed forms of the same integral, the scattering-angle channel,
 // the azimuth lookup's side, the AZIMUTH feature compiled only for tables that need it,
-// and bad input (a status and a message naming what is wrong).
+// sky images (through empty air exactly as they went in, through rain dimmed by its
+// extinction), reading images, and bad input (a status and a message naming what is
+// wrong).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -74,6 +78,32 @@ std::vector<float> render_y(arcus_context_t* ctx, const Table& t, const Sky& s, 
 }
 
 class RainbowSky : public ArcusTest {};
+
+// An equirectangular sky of w × h pixels whose channel c is linear in the pixel
+// centres' (u, v): a_c + b_c·u + c_c·v.  Bilinear reading returns a linear function
+// exactly, so away from the seam (u within half a pixel of 0 or 1) and the poles the
+// image's value in any direction is known in closed form.
+struct LinearSkyImage {
+  static constexpr double a[3] = {0.2, 0.5, 0.1}, b[3] = {0.6, -0.3, 0.4}, c[3] = {0.3, 0.2, 0.9};
+  uint32_t w, h;
+  std::vector<float> rgb;
+  LinearSkyImage(uint32_t width, uint32_t height) : w(width), h(height), rgb(size_t(width) * height * 3) {
+    for (uint32_t j = 0; j < h; ++j)
+      for (uint32_t i = 0; i < w; ++i)
+        for (int k = 0; k < 3; ++k) rgb[(size_t(j) * w + i) * 3 + k] = float(at(k, (i + 0.5) / w, (j + 0.5) / h));
+  }
+  static double at(int k, double u, double v) { return a[k] + b[k] * u + c[k] * v; }
+};
+
+// The linear sRGB image of a render.
+std::vector<float> render_rgb(arcus_context_t* ctx, const Table& t, const Sky& s) {
+  arcus_job_t* raw = nullptr;
+  EXPECT_EQ(arcus_rainbow_render(ctx, &t.t, &s.s, &raw), ARCUS_SUCCESS) << arcus_context_last_error(ctx);
+  const JobPtr j(raw);
+  std::vector<float> rgb(size_t(s.s.width) * s.s.height * 3);
+  EXPECT_EQ(arcus_job_get_rainbow_image(j.get(), nullptr, nullptr, nullptr, rgb.data(), nullptr), ARCUS_SUCCESS);
+  return rgb;
+}
 
 }  // namespace
 
@@ -151,6 +181,104 @@ TEST_F(RainbowSky, TablesWithoutAzimuthCompileWithoutIt) {
   EXPECT_EQ(features, arcus_features(0));
 }
 
+// With no rain in view the image sky must come out as it went in, times its scale, at
+// any wavelength grid: the header's mapping (azimuth from +z toward +x → u = a/360°,
+// elevation → v = (90° − e)/180°) and its pinhole camera (+x to the right looking along
+// +z) recomputed here.  The spectra r·S_r + g·S_g + b·S_b have the pixel's colour exactly
+// (double sums); what is left is float32 storage, 1e-6 relative, so 1e-5 bounds it.
+TEST_F(RainbowSky, SkyImageComesOutAsItWentInWhereNoRainIsInTheWay) {
+  const LinearSkyImage image(64, 32);
+  for (int count : {8, 33, 66}) {
+    Table t(count, 0.0, 1e-3);
+    Sky s(count, 0.0);
+    s.s.width = 16;
+    s.s.height = 12;
+    s.s.fov_deg = 60;
+    const double look_a = 200 * M_PI / 180, look_e = 30 * M_PI / 180;  // every row above the horizon
+    const double f[3] = {std::cos(look_e) * std::sin(look_a), std::sin(look_e), std::cos(look_e) * std::cos(look_a)};
+    std::copy(f, f + 3, s.s.camera_forward);
+    s.s.rain_min[2] = 100, s.s.rain_max[2] = 1100;  // behind the camera (β is 0 anyway)
+    s.s.sky_image = image.rgb.data();
+    s.s.sky_image_width = image.w;
+    s.s.sky_image_height = image.h;
+    s.s.sky_image_scale = 1.5;
+    const auto rgb = render_rgb(ctx(), t, s);
+    // right = up × forward, up' = forward × right; image plane at distance 1.
+    const double right[3] = {f[2], 0, -f[0]};
+    const double rn = std::hypot(right[0], right[2]);
+    const double r[3] = {right[0] / rn, 0, right[2] / rn};
+    const double u_[3] = {f[1] * r[2] - f[2] * r[1], f[2] * r[0] - f[0] * r[2], f[0] * r[1] - f[1] * r[0]};
+    const double half_w = std::tan(30 * M_PI / 180), half_h = half_w * 12 / 16;
+    for (uint32_t py = 0; py < 12; ++py)
+      for (uint32_t px = 0; px < 16; ++px) {
+        const double x = (2 * (px + 0.5) / 16 - 1) * half_w, y = (1 - 2 * (py + 0.5) / 12) * half_h;
+        double d[3], n = 0;
+        for (int a = 0; a < 3; ++a) n += (d[a] = f[a] + x * r[a] + y * u_[a]) * d[a];
+        for (double& da : d) da /= std::sqrt(n);
+        double azimuth = std::atan2(d[0], d[2]);
+        if (azimuth < 0) azimuth += 2 * M_PI;
+        const double u = azimuth / (2 * M_PI), v = std::acos(d[1]) / M_PI;
+        for (int k = 0; k < 3; ++k) {
+          const double expected = 1.5 * LinearSkyImage::at(k, u, v);
+          EXPECT_NEAR(rgb[(py * 16 + px) * 3 + k], expected, 1e-5 * std::fabs(expected) + 1e-7)
+              << count << " wavelengths, pixel " << px << ", " << py << " channel " << k;
+        }
+      }
+  }
+}
+
+// Through rain the sky is dimmed by exp(−σ_e·ℓ) over the rain's length ℓ along the ray.
+// A uniform image behind a grey slab (σ_e the same at every λ, β = 0): looking level
+// along +z through z ∈ [100, 1100] the image must come out times exp(−σ·1000), to
+// float precision (1e-5).
+TEST_F(RainbowSky, SkyImageIsDimmedByTheRainsExtinction) {
+  const double sigma = 1.2e-3, colour[3] = {0.25, 0.5, 0.8};
+  std::vector<float> uniform;
+  for (int p = 0; p < 8 * 4; ++p) uniform.insert(uniform.end(), {float(colour[0]), float(colour[1]), float(colour[2])});
+  Table t(33, 0.0, sigma);
+  Sky s(33, 0.0);
+  s.s.sky_image = uniform.data();
+  s.s.sky_image_width = 8;
+  s.s.sky_image_height = 4;
+  s.s.camera_position[1] = 50;  // inside the slab's height, so the level ray crosses all of it
+  const auto rgb = render_rgb(ctx(), t, s);
+  for (int k = 0; k < 3; ++k) {
+    const double expected = colour[k] * std::exp(-sigma * 1000);
+    EXPECT_NEAR(rgb[k], expected, 1e-5 * expected) << "channel " << k;
+  }
+}
+
+// arcus_image_read against a file written here: a PFM (float, rows stored bottom-up),
+// which must come back exactly and top row first; a missing file is an I/O error that
+// names it.
+TEST(ImageRead, ReadsFloatImagesExactlyTopRowFirst) {
+  const std::string path = (std::filesystem::temp_directory_path() / "arcus_test_image_read.pfm").string();
+  const uint32_t w = 3, h = 2;
+  const float top[9] = {0.5f, 1, 2, 3, 4, 5, 6, 7, 8.25f}, bottom[9] = {9, 10, 11, 12, 13, 14, 15, 16, 0.125f};
+  {
+    FILE* f = std::fopen(path.c_str(), "wb");
+    ASSERT_NE(f, nullptr);
+    std::fprintf(f, "PF\n%u %u\n-1.0\n", w, h);  // negative scale: little-endian
+    std::fwrite(bottom, sizeof(float), 9, f);
+    std::fwrite(top, sizeof(float), 9, f);
+    std::fclose(f);
+  }
+  uint32_t width = 0, height = 0;
+  ASSERT_EQ(arcus_image_read(path.c_str(), &width, &height, nullptr), ARCUS_SUCCESS) << arcus_last_error();
+  ASSERT_EQ(width, w);
+  ASSERT_EQ(height, h);
+  std::vector<float> rgb(w * h * 3);
+  ASSERT_EQ(arcus_image_read(path.c_str(), nullptr, nullptr, rgb.data()), ARCUS_SUCCESS);
+  for (int i = 0; i < 9; ++i) {
+    EXPECT_EQ(rgb[i], top[i]);
+    EXPECT_EQ(rgb[9 + i], bottom[i]);
+  }
+  std::filesystem::remove(path);
+  EXPECT_EQ(arcus_image_read(path.c_str(), &width, &height, nullptr), ARCUS_ERROR_IO);
+  EXPECT_NE(std::string(arcus_last_error()).find("arcus_test_image_read.pfm"), std::string::npos);
+  EXPECT_EQ(arcus_image_read(nullptr, &width, &height, nullptr), ARCUS_ERROR_INVALID_ARGUMENT);
+}
+
 TEST_F(RainbowSky, BadInputIsRefusedWithAReason) {
   auto refused = [&](const Table& t, const Sky& s, const std::string& words) {
     arcus_job_t* job = nullptr;
@@ -194,5 +322,24 @@ TEST_F(RainbowSky, BadInputIsRefusedWithAReason) {
     Sky s(4, 0.0);
     s.s.camera_up[0] = 0, s.s.camera_up[1] = 0, s.s.camera_up[2] = 2;  // along forward
     refused(t, s, "camera_up");
+  }
+  {
+    const std::vector<float> image(4 * 2 * 3, 0.5f);
+    auto with_image = [&](int count, auto change, const std::string& words) {
+      Table t(count, 1e-4, 1e-4);
+      Sky s(count, 0.0);
+      std::vector<float> pixels = image;
+      s.s.sky_image = pixels.data();
+      s.s.sky_image_width = 4;
+      s.s.sky_image_height = 2;
+      change(s.s, pixels);
+      refused(t, s, words);
+    };
+    with_image(4, [](arcus_rainbow_sky& s, std::vector<float>&) { s.sky_image_width = 0; }, "sky_image must be 1-65536");
+    with_image(4, [](arcus_rainbow_sky& s, std::vector<float>&) { s.sky_image_scale = -1; }, "sky_image_scale");
+    with_image(4, [](arcus_rainbow_sky&, std::vector<float>& p) { p[3 * 5 + 1] = -0.25f; }, "pixel (1, 1) channel 1");
+    with_image(4, [](arcus_rainbow_sky&, std::vector<float>& p) { p[0] = NAN; }, "pixel (0, 0) channel 0");
+    // Two wavelengths cannot mix three primaries.
+    with_image(2, [](arcus_rainbow_sky&, std::vector<float>&) {}, "at least 3 wavelengths");
   }
 }

@@ -192,6 +192,20 @@ class RainbowSky final : public Preview {
     if (s.find("ground_radiance")) ground_radiance_ = s.numbers("ground_radiance", L, "one per wavelength");
     home_.sky_radiance = sky_radiance_.empty() ? nullptr : sky_radiance_.data();
     home_.ground_radiance = ground_radiance_.empty() ? nullptr : ground_radiance_.data();
+    // A sky image: its file (relative to the JSON file's folder), read by the library.
+    if (const json* file = s.find("sky_image_file"); file && !file->is_null()) {
+      if (!file->is_string() || file->get<std::string>().empty())
+        s.fail("sky_image_file", "must be a file name or null, got " + shown(*file));
+      const std::string image_path = (fs::path(path).parent_path() / file->get<std::string>()).string();
+      uint32_t w = 0, h = 0;
+      check(nullptr, arcus_image_read(image_path.c_str(), &w, &h, nullptr), "sky_image_file");
+      sky_image_.resize(size_t(w) * h * 3);
+      check(nullptr, arcus_image_read(image_path.c_str(), nullptr, nullptr, sky_image_.data()), "sky_image_file");
+      home_.sky_image = sky_image_.data();
+      home_.sky_image_width = w;
+      home_.sky_image_height = h;
+      home_.sky_image_scale = s.number("sky_image_scale");
+    }
     s.vector3("rain_min", home_.rain_min);
     s.vector3("rain_max", home_.rain_max);
     home_.march_steps = s.count("march_steps");
@@ -274,6 +288,7 @@ class RainbowSky final : public Preview {
   arcus_context_t* ctx_;
   std::string name_, description_;
   std::vector<double> wavelengths_, extinction_, beta_, sun_, sky_radiance_, ground_radiance_;
+  std::vector<float> sky_image_;
   arcus_rainbow_table table_{};
   arcus_rainbow_sky home_{}, accepted_{}, wanted_{};  // the file's, the rendered, the user's
 };

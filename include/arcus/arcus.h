@@ -7,6 +7,8 @@
  *   arcus_curved.h  curved light: index-of-refraction fields and advancing rays
  *   arcus_render.h  rendering through curved light
  *   arcus_ocean.h   underwater light: the bio-optical model, spectral photon tracing
+ *   arcus_rainbow.h rainbows and halos: phase functions of drops and crystals, Mie, skies
+ *   arcus_image.h   reading input images (sky images)
  */
 #ifndef ARCUS_ARCUS_H
 #define ARCUS_ARCUS_H
@@ -17,5 +19,6 @@
 #include "arcus_render.h"
 #include "arcus_ocean.h"
 #include "arcus_rainbow.h"
+#include "arcus_image.h"
 
 #endif /* ARCUS_ARCUS_H */

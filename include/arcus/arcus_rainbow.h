@@ -174,14 +174,14 @@ typedef struct arcus_rainbow_table {
 } arcus_rainbow_table;
 
 /* What the camera sees: a box of rain lit by the sun, over a sky and a ground (y = 0).
- * World frame: y up.  The camera sits at `camera_position` looking along
+ * World frame: y up, +x to the right of a camera looking along +z.  The camera sits at `camera_position` looking along
  * `camera_forward` with `camera_up` roughly up (a pinhole, horizontal field of view
  * fov_deg).  The sun is at elevation/azimuth (azimuth from +z toward +x), a disc of
  * sun_diameter_deg averaged over sun_samples points; its irradiance at each wavelength
  * [W/(m²·nm)] arrives unattenuated at the box.  Per view ray, the rain's single
  * scattering is marched (march_steps midpoints across the box, each attenuated toward
- * the camera and toward the sun by σ_e), then the sky (above the horizon) or the ground
- * behind it, attenuated through the rain, is added. */
+ * the camera and toward the sun by σ_e), then the sky (above the horizon: a spectrum or
+ * an image) or the ground behind it, attenuated through the rain, is added. */
 typedef struct arcus_rainbow_sky {
   uint32_t width, height;
   double camera_position[3], camera_forward[3], camera_up[3];
@@ -191,6 +191,20 @@ typedef struct arcus_rainbow_sky {
   const double* sun_irradiance; /* [wavelength_count] */
   const double* sky_radiance;   /* [wavelength_count] W/(m²·sr·nm), NULL: black */
   const double* ground_radiance;/* [wavelength_count], NULL: black */
+  /* The sky as an image (NULL: sky_radiance): sky_image_width × sky_image_height linear
+   * sRGB, 3 floats a pixel (finite, ≥ 0), top row first, an equirectangular panorama of
+   * the whole sphere: a direction at azimuth a (from +z toward +x, as the sun's) and
+   * elevation e lands at column u = a/360° and row v = (90° − e)/180°, read bilinearly
+   * (wrapping in u).  So the centre column faces −z and, turning right, u grows: the
+   * panorama is seen as it was taken, as the renderer's skies are.
+   * Above the horizon it replaces sky_radiance: a pixel (r, g, b) times sky_image_scale
+   * becomes the spectrum r·S_r(λ) + g·S_g(λ) + b·S_b(λ), three fixed smooth spectra whose
+   * colours at the table's wavelengths are the sRGB primaries, so where no rain is in
+   * the way the image comes out as it went in, times the scale; through rain each
+   * wavelength is attenuated by its own σ_e.  Needs ≥ 3 wavelengths across 440–640 nm. */
+  const float* sky_image;
+  uint32_t sky_image_width, sky_image_height;
+  double sky_image_scale;       /* the radiance of a pixel value of 1 [W/(m²·sr·nm)] */
   double rain_min[3], rain_max[3]; /* the box of drops [m] */
   uint32_t march_steps;
   double exposure;              /* the PNG's scale; 0: Y's 99.5th percentile → 0.9 */
@@ -200,7 +214,8 @@ typedef struct arcus_rainbow_sky {
 
 /* 320 × 240, camera at 1.7 m looking along +z, 90° field of view, sun at 10° behind the
  * camera (azimuth 180°), 0.53° wide, 16 samples, no spectra (set them), rain in
- * x ∈ [−2000, 2000], y ∈ [0, 2000], z ∈ [500, 1500] m, 32 steps, automatic exposure. */
+ * x ∈ [−2000, 2000], y ∈ [0, 2000], z ∈ [500, 1500] m, 32 steps, automatic exposure, no
+ * sky image (scale 1). */
 ARCUS_API arcus_status arcus_rainbow_sky_init(arcus_rainbow_sky* sky);
 /* Renders the sky: an error (with a message) for a table or sky out of range, and for a
  * sun below the horizon (no rainbow forms from a sun that does not light the rain). */

@@ -89,7 +89,7 @@ ARCUS_DECLARE_RAINBOW_QUERY(rainbow_query_desc, double, int32_t);
  * pixel (i, j) is forward + u·right + v·up with u, v spanning ±half_width, ±half_height),
  * the sun's direction and the light frame of its centre (light along −sun; +x_light,
  * +y_light the table's φ = 0° and 90°), the box of rain, the table's θ samples and
- * sizes, and the slice of pixels this launch does. */
+ * sizes, the slice of pixels this launch does, and whether the sky is an image. */
 #define ARCUS_DECLARE_RAINBOW_SKY(NAME, R, I) \
   typedef struct NAME {                       \
     R camera[3], forward[3], right[3], up[3]; \
@@ -100,6 +100,7 @@ ARCUS_DECLARE_RAINBOW_QUERY(rainbow_query_desc, double, int32_t);
     I width, height, steps;                   \
     I wavelengths, thetas, phis;              \
     I first, count;                           \
+    I sky_image, padding; /* 1: sky_rgb */    \
   } NAME
 
 #ifdef __OPENCL_C_VERSION__

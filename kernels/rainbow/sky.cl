@@ -14,6 +14,9 @@
  * beta        [wavelengths × phis × thetas] the disc-averaged volume scattering function
  * extinction  [wavelengths] σ_e [1/m]
  * sun, sky, ground  [wavelengths] irradiance and the background's radiances
+ * sky_rgb     [3 per pixel] with s.sky_image: the sky image's linear sRGB behind each
+ *             pixel (sampled by the host), which becomes the spectrum Σ_c rgb_c·basis_c
+ * sky_basis   [wavelengths × 3] the spectra S_r, S_g, S_b (spectral/srgb.h)
  * weights     [wavelengths × 3] the CIE band weights
  * xyz         [3 per pixel] out;  theta  [per pixel] the scattering angle [deg], out
  *
@@ -60,6 +63,7 @@ REAL sky_beta(__global const REAL* beta, const rainbow_sky_desc* s, int l, REAL 
 
 __kernel void arcus_rainbow_sky(__global const REAL* beta, __global const REAL* extinction,
                                 __global const REAL* sun, __global const REAL* sky, __global const REAL* ground,
+                                __global const float* sky_rgb, __global const REAL* sky_basis,
                                 __global const REAL* weights, const rainbow_sky_desc s, __global float* xyz,
                                 __global float* theta_out) {
   const int item = get_global_id(0);
@@ -95,7 +99,11 @@ __kernel void arcus_rainbow_sky(__global const REAL* beta, __global const REAL* 
   const int below = d[1] < 0;
   if (below && x[1] > 0) t1 = fmin(t1, -x[1] / d[1]);
   const int rain = t1 > t0;
+  const int image = !below && s.sky_image;
   __global const REAL* background = below ? ground : sky;
+  REAL rgb[3] = {0, 0, 0};
+  if (image)
+    for (int c = 0; c < 3; ++c) rgb[c] = sky_rgb[3 * (long)pixel + c];
 
   /* The sun's path out of the box from a point p is min over axes of
    * (bound_a − p_a)/sun_a, with bound_a the face the sun's direction leaves through. */
@@ -108,7 +116,8 @@ __kernel void arcus_rainbow_sky(__global const REAL* beta, __global const REAL* 
   REAL sigma_done = -1, march = 0;
   for (int l = 0; l < s.wavelengths; ++l) {
     const REAL sigma = extinction[l];
-    REAL radiance = background[l];
+    REAL radiance = image ? rgb[0] * sky_basis[3 * l] + rgb[1] * sky_basis[3 * l + 1] + rgb[2] * sky_basis[3 * l + 2]
+                          : background[l];
     if (rain) {
       if (sigma != sigma_done) {
         const REAL dt = (t1 - t0) / s.steps;

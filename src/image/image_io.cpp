@@ -187,4 +187,9 @@ std::array<float, 3> sample_bilinear(const Image& image, double u, double v, boo
   return out;
 }
 
+std::array<double, 2> equirect_uv(double x, double y, double z) {
+  constexpr double kPi = 3.14159265358979323846;
+  return {0.5 + std::atan2(x, -z) / (2 * kPi), std::acos(std::clamp(y, -1.0, 1.0)) / kPi};
+}
+
 }  // namespace arcus::image

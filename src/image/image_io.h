@@ -48,4 +48,9 @@ Image read_channels(const std::string& path);
 // across v it is always clamped.  u and v must be finite.
 std::array<float, 3> sample_bilinear(const Image& image, double u, double v, bool wrap_u);
 
+// Where a unit direction (x, y, z) lands on an equirectangular map of the whole sphere
+// (every sky image of every engine): y up, so v = acos(y)/π runs from the zenith (top
+// row) to the nadir; u = ½ + atan2(x, −z)/2π puts −z at the centre column and +x at ¾.
+std::array<double, 2> equirect_uv(double x, double y, double z);
+
 }  // namespace arcus::image

@@ -303,6 +303,7 @@ arcus_status arcus_rainbow_sky_init(arcus_rainbow_sky* sky) {
     std::copy(lo, lo + 3, sky->rain_min);
     std::copy(hi, hi + 3, sky->rain_max);
     sky->march_steps = 32;
+    sky->sky_image_scale = 1;
   });
 }
 

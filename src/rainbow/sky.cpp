@@ -14,6 +14,7 @@
 #include "core/kernel_source.h"
 #include "core/runtime.h"
 #include "core/slices.h"
+#include "image/image_io.h"
 #include "rainbow/rainbow_desc.h"
 #include "spectral/cie.h"
 #include "spectral/srgb.h"
@@ -71,6 +72,32 @@ double beta_at(const arcus_rainbow_table& t, uint32_t l, double phi_deg, double 
   return (1 - fv) * row(j0) + fv * row((j0 + 1) % t.phi_count);
 }
 
+// The sky image behind every pixel, times its scale (linear sRGB, 3 floats a pixel): the
+// kernel's view rays (sky.cl) sampled on the host, so that one bilinear sampler and one
+// equirectangular convention (image_io.h) serve every engine.
+std::vector<float> sky_behind_pixels(const arcus_rainbow_sky& s, const rainbow_sky_desc& d) {
+  image::Image sky;
+  sky.width = static_cast<int>(s.sky_image_width);
+  sky.height = static_cast<int>(s.sky_image_height);
+  sky.channels = {"R", "G", "B"};
+  sky.pixels.assign(s.sky_image, s.sky_image + size_t(sky.width) * sky.height * 3);
+  std::vector<float> out(size_t(s.width) * s.height * 3);
+  for (uint32_t py = 0; py < s.height; ++py)
+    for (uint32_t px = 0; px < s.width; ++px) {
+      const double u = (2 * (px + 0.5) / s.width - 1) * d.half_width, v = (1 - 2 * (py + 0.5) / s.height) * d.half_height;
+      Vec ray;
+      for (int a = 0; a < 3; ++a) ray[a] = d.forward[a] + u * d.right[a] + v * d.up[a];
+      ray = normalized(ray);
+      // This engine's +x lies to the right of a camera looking along +z, the renderer's
+      // to its left: x mirrored, a panorama reads the same way round in both.
+      const auto uv = image::equirect_uv(-ray[0], ray[1], ray[2]);
+      const auto rgb = image::sample_bilinear(sky, uv[0], uv[1], true);
+      for (int c = 0; c < 3; ++c)
+        out[(size_t(py) * s.width + px) * 3 + c] = static_cast<float>(rgb[c] * s.sky_image_scale);
+    }
+  return out;
+}
+
 }  // namespace
 
 void check_sky(const arcus_rainbow_table& t, const arcus_rainbow_sky& s) {
@@ -120,6 +147,20 @@ void check_sky(const arcus_rainbow_table& t, const arcus_rainbow_sky& s) {
   require_spectrum(s.sun_irradiance, t.wavelength_count, "sky.sun_irradiance", false);
   require_spectrum(s.sky_radiance, t.wavelength_count, "sky.sky_radiance", true);
   require_spectrum(s.ground_radiance, t.wavelength_count, "sky.ground_radiance", true);
+  if (s.sky_image) {
+    require(s.sky_image_width >= 1 && s.sky_image_height >= 1 && s.sky_image_width <= 65536 &&
+                s.sky_image_height <= 65536 && size_t(s.sky_image_width) * s.sky_image_height <= (size_t(1) << 28),
+            "sky.sky_image must be 1-65536 pixels on a side, got " + std::to_string(s.sky_image_width) + " × " +
+                std::to_string(s.sky_image_height));
+    require(std::isfinite(s.sky_image_scale) && s.sky_image_scale >= 0,
+            "sky.sky_image_scale must be finite and ≥ 0, got " + number(s.sky_image_scale));
+    const size_t values = size_t(s.sky_image_width) * s.sky_image_height * 3;
+    for (size_t i = 0; i < values; ++i)
+      require(std::isfinite(s.sky_image[i]) && s.sky_image[i] >= 0,
+              "sky.sky_image pixel (" + std::to_string(i / 3 % s.sky_image_width) + ", " +
+                  std::to_string(i / 3 / s.sky_image_width) + ") channel " + std::to_string(i % 3) + " is " +
+                  number(s.sky_image[i]) + ": a sky's radiance must be finite and ≥ 0 (clip the image first)");
+  }
   for (int a = 0; a < 3; ++a)
     require(std::isfinite(s.rain_min[a]) && std::isfinite(s.rain_max[a]) && s.rain_min[a] < s.rain_max[a],
             "sky.rain_min must lie below rain_max on every axis (axis " + std::to_string(a) + ": " +
@@ -229,6 +270,19 @@ std::unique_ptr<SkyJob> render_sky(arcus_context_t* ctx, const arcus_rainbow_tab
   DeviceBuffer ground_dev(ctx, L * sizeof(double), "the ground's radiance",
                           s.ground_radiance ? s.ground_radiance : zeros.data());
   DeviceBuffer weights_dev(ctx, weights.size() * sizeof(double), "the colour weights", weights.data());
+  // The sky image (if any): its colour behind each pixel and the spectra that colour mixes.
+  d.sky_image = s.sky_image != nullptr;
+  std::vector<float> sky_rgb(3, 0.0f);
+  std::vector<double> sky_basis(3, 0.0);
+  if (d.sky_image) {
+    const auto basis = spectral::srgb_basis_spectra(std::vector<double>(t.wavelengths_nm, t.wavelengths_nm + L));
+    sky_basis.resize(3 * L);
+    for (size_t l = 0; l < L; ++l)
+      for (int c = 0; c < 3; ++c) sky_basis[3 * l + c] = basis[l][c];
+    sky_rgb = sky_behind_pixels(s, d);
+  }
+  DeviceBuffer sky_rgb_dev(ctx, sky_rgb.size() * sizeof(float), "the sky image behind the pixels", sky_rgb.data());
+  DeviceBuffer sky_basis_dev(ctx, sky_basis.size() * sizeof(double), "the sky image's spectra", sky_basis.data());
   DeviceBuffer xyz_dev(ctx, pixels * 3 * sizeof(float), "the XYZ image");
   DeviceBuffer theta_dev(ctx, pixels * sizeof(float), "the scattering angles");
   KernelCall k(built.program, "arcus_rainbow_sky");
@@ -237,16 +291,18 @@ std::unique_ptr<SkyJob> render_sky(arcus_context_t* ctx, const arcus_rainbow_tab
   k.set(2, &sun_dev);
   k.set(3, &sky_dev);
   k.set(4, &ground_dev);
-  k.set(5, &weights_dev);
-  k.set(7, &xyz_dev);
-  k.set(8, &theta_dev);
+  k.set(5, &sky_rgb_dev);
+  k.set(6, &sky_basis_dev);
+  k.set(7, &weights_dev);
+  k.set(9, &xyz_dev);
+  k.set(10, &theta_dev);
   int64_t done = 0;
   SliceJob slices;
   slices.first_units = 4096;
   slices.launch = [&](int64_t units, bool) {
     d.first = static_cast<int32_t>(done);
     d.count = static_cast<int32_t>(std::min<int64_t>(std::max<int64_t>(units, 1), int64_t(pixels) - done));
-    k.set_value(6, d);
+    k.set_value(8, d);
     const double secs = k.run(ctx, size_t(d.count));
     done += d.count;
     return secs;

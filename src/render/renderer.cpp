@@ -202,8 +202,8 @@ V3 sky_radiance(const RenderScene& s, V3 d) {
       return (1 - t) * v3(sky.horizon) + t * v3(sky.zenith);
     }
     case SkyKind::Image: {
-      const double u = 0.5 + std::atan2(d.x, -d.z) / (2 * M_PI), v = std::acos(std::clamp(d.y, -1.0, 1.0)) / M_PI;
-      const auto c = image::sample_bilinear(s.sky_image, u, v, true);
+      const auto uv = image::equirect_uv(d.x, d.y, d.z);
+      const auto c = image::sample_bilinear(s.sky_image, uv[0], uv[1], true);
       return sky.intensity * V3{c[0], c[1], c[2]};
     }
   }

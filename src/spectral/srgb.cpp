@@ -2,6 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "core/error.h"
+#include "core/format.h"
+#include "spectral/cie.h"
 
 namespace arcus::spectral {
 
@@ -71,6 +76,43 @@ double srgb_decode(double encoded) {
 uint8_t srgb_encode_8bit(double linear) {
   if (!(linear > 0.0)) return 0;  // NaN too
   return static_cast<uint8_t>(std::lround(std::min(srgb_encode(linear), 1.0) * 255.0));
+}
+
+std::vector<std::array<double, 3>> srgb_basis_spectra(const std::vector<double>& wavelengths) {
+  require(wavelengths.size() >= 3, "an RGB colour needs at least 3 wavelengths to become a spectrum, got " +
+                                       std::to_string(wavelengths.size()));
+  const auto weights = band_weights(wavelengths);
+  // The Gaussians' colours P (XYZ × Gaussian), then the mix K = P⁻¹·M that gives each
+  // primary's XYZ (M's columns): S_c = Σ_k G_k·K[k][c].
+  constexpr double kCentre[3] = {440, 525, 640}, kSigma[3] = {30, 15, 20};
+  std::vector<std::array<double, 3>> gauss(wavelengths.size());
+  Matrix p{};
+  for (size_t l = 0; l < wavelengths.size(); ++l)
+    for (int k = 0; k < 3; ++k) {
+      const double z = (wavelengths[l] - kCentre[k]) / kSigma[k];
+      gauss[l][k] = std::exp(-0.5 * z * z);
+      for (int j = 0; j < 3; ++j) p[j][k] += weights[l][j] * gauss[l][k];
+    }
+  const Matrix pinv = inverse(p);
+  Matrix mix{};
+  double largest = 0;
+  for (int k = 0; k < 3; ++k)
+    for (int c = 0; c < 3; ++c) {
+      for (int j = 0; j < 3; ++j) mix[k][c] += pinv[k][j] * rgb_to_xyz()[j][c];
+      largest = std::max(largest, std::fabs(mix[k][c]));
+    }
+  // Over 380–700 nm the mix stays below 2; a huge or non-finite one means the grid
+  // misses a Gaussian and its spectra would be enormous, cancelling lobes.
+  require(std::isfinite(largest) && largest < 100,
+          "the wavelengths " + number(wavelengths.front()) + "–" + number(wavelengths.back()) + " nm (" +
+              std::to_string(wavelengths.size()) +
+              " samples) cannot turn RGB into spectra: they must sample blue, green and red (around 440, 525 "
+              "and 640 nm)");
+  std::vector<std::array<double, 3>> out(wavelengths.size());
+  for (size_t l = 0; l < wavelengths.size(); ++l)
+    for (int c = 0; c < 3; ++c)
+      for (int k = 0; k < 3; ++k) out[l][c] += gauss[l][k] * mix[k][c];
+  return out;
 }
 
 }  // namespace arcus::spectral

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 namespace arcus::spectral {
 
@@ -23,5 +24,16 @@ double srgb_decode(double encoded);
 
 // Linear -> 8-bit sRGB: encoded, clamped to [0, 1], rounded to nearest; NaN gives 0.
 uint8_t srgb_encode_8bit(double linear);
+
+// Three spectra S_r, S_g, S_b at `wavelengths` (strictly increasing, nm) that turn a
+// linear sRGB colour into a spectrum, r·S_r + g·S_g + b·S_b, whose colour under cie.h's
+// band weights for those same wavelengths is that colour exactly: so an RGB image can
+// enter a spectral render and come out unchanged where nothing filters it.  Each is a
+// combination of three Gaussians (440, 525, 640 nm; σ 30, 15, 20 nm), chosen so that
+// the combinations are non-negative for grids over 380–700 nm from 8 to 200 samples:
+// a colour inside the sRGB gamut becomes a non-negative spectrum.  [wavelength][r, g, b].
+// INVALID_ARGUMENT when the wavelengths cannot hold three colours (fewer than 3, or
+// none near one of the Gaussians).
+std::vector<std::array<double, 3>> srgb_basis_spectra(const std::vector<double>& wavelengths);
 
 }  // namespace arcus::spectral

@@ -294,4 +294,28 @@ TEST(Srgb, EqualEnergySpectrumIsWhitishThroughTheWholeChain) {
   }
 }
 
+// The RGB → spectrum basis: each S_c's colour under the grid's own band weights is
+// primary c (so an image round-trips), for coarse and fine grids over 380–700 nm; the
+// spectra are non-negative there (what the header promises: an in-gamut colour gives a
+// physical spectrum); and a grid that misses the red Gaussian is refused.  Tolerance:
+// the colours come from a 3 × 3 solve in double, 1e-12.
+TEST(SrgbBasis, SpectraHaveThePrimariesColoursAndAreNonNegative) {
+  for (int count : {8, 12, 16, 33, 66, 100, 200}) {
+    std::vector<double> nm;
+    for (int i = 0; i < count; ++i) nm.push_back(380 + 320.0 * i / (count - 1));
+    const auto basis = srgb_basis_spectra(nm);
+    const auto weights = band_weights(nm);
+    for (int c = 0; c < 3; ++c) {
+      std::array<double, 3> xyz{};
+      for (int l = 0; l < count; ++l)
+        for (int j = 0; j < 3; ++j) xyz[j] += basis[l][c] * weights[l][j];
+      const auto rgb = xyz_to_linear_srgb(xyz);
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(rgb[k], k == c ? 1.0 : 0.0, 1e-12) << count << " samples, primary " << c;
+      for (int l = 0; l < count; ++l) EXPECT_GE(basis[l][c], 0.0) << count << " samples at " << nm[l] << " nm";
+    }
+  }
+  EXPECT_THROW(srgb_basis_spectra({400, 450, 500, 550}), arcus::Error);  // no red
+  EXPECT_THROW(srgb_basis_spectra({450, 550}), arcus::Error);
+}
+
 }  // namespace

@@ -19,7 +19,7 @@ The shared library is looked up, in order, at the ARCUS_LIBRARY environment vari
 
 import ctypes as _ctypes
 
-from . import halo, media, mie, ocean, rainbow, sky, sweep
+from . import halo, image, media, mie, ocean, rainbow, sky, sweep
 from ._constants import (
     DEVICE_DEFAULT,
     EARTH_RADIUS,

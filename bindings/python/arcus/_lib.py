@@ -304,6 +304,10 @@ class RainbowSkyStruct(ctypes.Structure):
         ("sun_irradiance", POINTER(c_double)),
         ("sky_radiance", POINTER(c_double)),
         ("ground_radiance", POINTER(c_double)),
+        ("sky_image", POINTER(ctypes.c_float)),
+        ("sky_image_width", c_uint32),
+        ("sky_image_height", c_uint32),
+        ("sky_image_scale", c_double),
         ("rain_min", c_double * 3),
         ("rain_max", c_double * 3),
         ("march_steps", c_uint32),
@@ -450,6 +454,7 @@ _PROTOTYPES = {
         _status, [_handle, POINTER(c_uint32), POINTER(c_uint32), POINTER(ctypes.c_float), POINTER(ctypes.c_float),
                   POINTER(ctypes.c_float)]),
     "arcus_job_write_rainbow_image": (_status, [_handle, c_char_p, c_char_p]),
+    "arcus_image_read": (_status, [c_char_p, POINTER(c_uint32), POINTER(c_uint32), POINTER(ctypes.c_float)]),
     "arcus_mie": (
         _status,
         [c_double, c_double, c_double, c_double, c_size_t, _dvec, _dvec, _dvec, _dvec, _dvec,

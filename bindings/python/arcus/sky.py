@@ -23,6 +23,7 @@ import numpy as np
 from . import _lib
 from ._args import to_path
 from ._errors import ArgumentError
+from .image import read as read_image
 from ._lib import lib
 
 __all__ = ["SkyImage", "VolumeTable", "load_scene", "populations", "volume_table", "sky_parameters", "render", "export",
@@ -272,6 +273,30 @@ def volume_table(scene, *, cache_dir=None, client="serial", workers=None, progre
                        seconds=time.perf_counter() - t0)
 
 
+def _scene_dir(scene):
+    """The folder a scene's relative file names start from: its file's, or the current one
+    for a dict."""
+    return "" if isinstance(scene, dict) else os.path.dirname(os.path.abspath(os.fspath(scene)))
+
+
+def _sky_image(spec, base_dir):
+    """A sky image, ``{"image": FILE, "scale": s}`` (FILE relative to the scene's folder):
+    (absolute path, scale), or (None, 1.0) for a sky given as a spectrum."""
+    if not isinstance(spec, dict) or "image" not in spec:
+        return None, 1.0
+    unknown = set(spec) - {"image", "scale"}
+    if unknown:
+        raise ArgumentError("background.sky: an image sky takes 'image' and 'scale' only, got %s"
+                            % ", ".join(sorted(unknown)))
+    name = spec["image"]
+    if not isinstance(name, str) or not name:
+        raise ArgumentError("background.sky: 'image' must be a file name, got %r" % (name,))
+    path = os.path.join(base_dir, name)
+    if not os.path.isfile(path):
+        raise ArgumentError("background.sky: the image %s does not exist" % path)
+    return os.path.abspath(path), _number(spec, "scale", 1.0, low=0, where="background.sky")
+
+
 def _spectrum(spec, wl, where, default_radiance):
     """A background spectrum: {"spectrum": "flat"|"rayleigh", "radiance": R} (rayleigh:
     λ^−4 scaled to mean R over the table's wavelengths)."""
@@ -279,6 +304,10 @@ def _spectrum(spec, wl, where, default_radiance):
         return np.zeros_like(wl)
     if not isinstance(spec, dict):
         raise ArgumentError("%s must be an object, got %r" % (where, spec))
+    if "image" in spec:
+        if where != "background.sky":
+            raise ArgumentError("%s: only the sky may be an image" % where)
+        return np.zeros_like(wl)
     value = _number(spec, "radiance", default_radiance, low=0, where=where)
     kind = spec.get("spectrum", "flat")
     if kind == "flat":
@@ -318,10 +347,15 @@ class SkyImage:
     seconds: dict
 
 
-def sky_parameters(scene, wavelengths, *, width=None, height=None, sun_samples=None, march_steps=None):
+def sky_parameters(scene, wavelengths, *, width=None, height=None, sun_samples=None, march_steps=None,
+                   base_dir=None):
     """The members of ``arcus_rainbow_sky`` for a scene at the table's wavelengths, as a
     dict of numbers, 3-vectors and spectra (what :func:`render` passes the library and
-    :func:`export` writes for arcus_view)."""
+    :func:`export` writes for arcus_view); a sky image as ``sky_image_file`` (an absolute
+    path, or None) and ``sky_image_scale``.  Relative file names start from ``base_dir``
+    (default: the scene file's folder)."""
+    if base_dir is None:
+        base_dir = _scene_dir(scene)
     scene = load_scene(scene)
     img, cam, sun, rain = (scene.get(k, {}) for k in ("image", "camera", "sun", "rain"))
     for name, part in (("image", img), ("camera", cam), ("sun", sun), ("rain", rain)):
@@ -330,6 +364,9 @@ def sky_parameters(scene, wavelengths, *, width=None, height=None, sun_samples=N
     look_a = math.radians(_number(cam, "look_azimuth_deg", 0.0, where="camera"))
     look_e = math.radians(_number(cam, "look_elevation_deg", 20.0, -89, 89, "camera"))
     background = scene.get("background", {})
+    if not isinstance(background, dict):
+        raise ArgumentError("scene: 'background' must be an object")
+    sky_file, sky_scale = _sky_image(background.get("sky"), base_dir)
     return dict(
         width=int(width or _number(img, "width", 800, 1, 16384, "image")),
         height=int(height or _number(img, "height", 600, 1, 16384, "image")),
@@ -344,6 +381,8 @@ def sky_parameters(scene, wavelengths, *, width=None, height=None, sun_samples=N
         sun_irradiance=sun_spectrum(sun, wavelengths),
         sky_radiance=_spectrum(background.get("sky"), wavelengths, "background.sky", 0.0),
         ground_radiance=_spectrum(background.get("ground"), wavelengths, "background.ground", 0.0),
+        sky_image_file=sky_file,
+        sky_image_scale=sky_scale,
         rain_min=_vector(rain, "box_min", None, "rain"),
         rain_max=_vector(rain, "box_max", None, "rain"),
         march_steps=int(march_steps or _number(rain, "march_steps", 32, 1, 100000, "rain")),
@@ -365,13 +404,14 @@ def export(scene, path, *, table=None, width=None, height=None, sun_samples=None
     table's axes and extinction) and ``path + ".beta"`` (β as little-endian float64,
     wavelength × φ × θ).  ``width`` … ``march_steps`` override the scene's, as in
     :func:`render`.  Returns the :class:`VolumeTable`."""
+    base_dir = _scene_dir(scene)
     scene = load_scene(scene)
     _check_sun(scene)
     if table is None:
         table = volume_table(scene, cache_dir=cache_dir, client=client, workers=workers)
     params = {k: (v.tolist() if isinstance(v, np.ndarray) else v)
               for k, v in sky_parameters(scene, table.wavelengths, width=width, height=height, sun_samples=sun_samples,
-                                         march_steps=march_steps).items()}
+                                         march_steps=march_steps, base_dir=base_dir).items()}
     path = os.fspath(path)
     beta_file = path + ".beta"
     np.ascontiguousarray(table.beta, dtype="<f8").tofile(beta_file)
@@ -394,18 +434,26 @@ def render(scene, *, exr=None, png=None, table=None, width=None, height=None, su
     computed where missing, here (``client="serial"``) or on a Dask client/address."""
     from .rainbow import _context
 
+    base_dir = _scene_dir(scene)
     scene = load_scene(scene)
     _check_sun(scene)
-    sky_parameters(scene, np.array([550.0]))  # the scene's errors before any table is computed
+    sky_parameters(scene, np.array([550.0]), base_dir=base_dir)  # the scene's errors before any table is computed
     if table is None:
         table = volume_table(scene, cache_dir=cache_dir, client=client, workers=workers,
                              progress=progress is not None)
     wl = table.wavelengths
-    params = sky_parameters(scene, wl, width=width, height=height, sun_samples=sun_samples, march_steps=march_steps)
+    params = sky_parameters(scene, wl, width=width, height=height, sun_samples=sun_samples, march_steps=march_steps,
+                            base_dir=base_dir)
     sky = _lib.RainbowSkyStruct()
     _lib.check(lib.arcus_rainbow_sky_init(byref(sky)))
     spectra = {k: np.ascontiguousarray(params.pop(k), dtype=float)
                for k in ("sun_irradiance", "sky_radiance", "ground_radiance")}
+    sky_image = params.pop("sky_image_file")
+    if sky_image is not None:
+        sky_image = np.ascontiguousarray(read_image(sky_image))
+        sky.sky_image = _lib.ptr(sky_image, c_float)
+        sky.sky_image_height, sky.sky_image_width = sky_image.shape[:2]
+    sky.sky_image_scale = params.pop("sky_image_scale")
     for key, value in params.items():
         if isinstance(value, list):
             getattr(sky, key)[:] = value

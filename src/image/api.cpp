@@ -1,0 +1,19 @@
+// The image C API (include/arcus/arcus_image.h): input images, read through image_io.
+#include <algorithm>
+
+#include "arcus/arcus_image.h"
+#include "core/call.h"
+#include "image/image_io.h"
+
+using namespace arcus;
+using namespace arcus::api;
+
+arcus_status arcus_image_read(const char* path, uint32_t* width, uint32_t* height, float* rgb) {
+  return without_context([&] {
+    require_pointer(path, "path");
+    const image::Image im = image::read_image(path);
+    if (width) *width = static_cast<uint32_t>(im.width);
+    if (height) *height = static_cast<uint32_t>(im.height);
+    if (rgb) std::copy(im.pixels.begin(), im.pixels.end(), rgb);
+  });
+}
