@@ -47,8 +47,9 @@ python3 bench/rainbow_bench.py --out out/bench
 # Rainbow skies (Fig. 5.21-5.25) and halos: the phase tables are computed once into the
 # sweep's cache (~/.cache/arcus/tables), then every later render reads them.
 mkdir -p out/rainbow/sky
+python3 data/rainbow/sky/make_storm_sky.py  # storm_sky.json's panorama (generated, not in the repository)
 for scene in single_bow double_bow supernumerary supernumerary_200um red_sun cloudbow twinned marshall_palmer \
-             halo sundogs; do
+             halo sundogs storm_sky; do
   python3 apps/rainbow/arcus_rainbow_render.py "scenes/rainbow/$scene.json" -o "out/rainbow/sky/$scene.exr" \
     --png "out/rainbow/sky/$scene.png"
 done
@@ -66,6 +67,6 @@ echo "Rainbows:         $(pwd)/out/rainbow/  (sphere.png: against Mie and per te
 echo "                  over 33 wavelengths, twinned.png: the twinned bow)"
 echo "Rainbow benchmark: $(pwd)/out/bench/rainbow.md  (grid and drop size against error and time, the targets)"
 echo "Rainbow skies:    $(pwd)/out/rainbow/sky/  (<scene>.png and .exr: the thesis' bows, the cloudbow, the twinned"
-echo "                  bow, the 22° halo and sundogs)"
+echo "                  bow, the 22° halo, sundogs and a bow before a sky image)"
 echo "Sky benchmark:    $(pwd)/out/bench/sky.md  (wavelengths, size bins, sun points, march steps against error and"
 echo "                  time; the five thesis scenes from cached tables), sweep.md (Dask against a plain loop)"

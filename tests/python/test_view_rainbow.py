@@ -1,6 +1,6 @@
 """arcus_view previews the rainbow skies arcus.sky.export writes: its screenshot of the
 file's sky, taken in a real (Xvfb) window, is the library's PNG of the same sky
-(arcus_job_write_rainbow_image) byte for byte, and a file whose β is cut short is
+(arcus_job_write_rainbow_image) byte for byte, a sky image included, and a file whose β is cut short is
 refused with exit status 2 and a message naming it.
 
 arcus_view is looked for next to the libarcus these tests load (the build tree puts both
@@ -51,18 +51,36 @@ def run_view(*args):
     return int(lines[-1].split()[-1]), "\n".join(lines[:-1]), done.stderr
 
 
-def double_bow(exposure=0.0, raindrops=False):
+def double_bow(exposure=0.0, raindrops=False, image_sky=False):
     """scenes/rainbow/double_bow.json at 160 × 120 with a small table (8 wavelengths,
     grid 200): seconds on two cores.  raindrops: 2 mm falling drops instead of the
     spheres, whose table depends on the azimuth too (β's φ axis, 30° steps, a coarse
-    θ axis)."""
+    θ axis).  image_sky: a panorama file as the sky."""
     scene = json.loads((REPO / "scenes" / "rainbow" / "double_bow.json").read_text())
     scene["image"].update(width=160, height=120, exposure=exposure)
     scene["tables"].update(wavelengths={"linspace": [380, 700, 8]}, grid=200)
     if raindrops:
         scene["rain"]["populations"] = [{"shape": "raindrop", "diameter": 2e-3, "density": 300}]
         scene["tables"].update(grid=100, phi_step_deg=30, theta={"range": [120, 180, 0.5]})
+    if image_sky:
+        scene["background"]["sky"] = {"image": str(image_sky), "scale": 0.05}
     return scene
+
+
+def storm_sky_pfm(path):
+    """data/rainbow/sky/make_storm_sky.py's panorama as a PFM file (float, rows bottom-up)."""
+    import importlib.util
+
+    import numpy as np
+    spec = importlib.util.spec_from_file_location("make_storm_sky",
+                                                  REPO / "data" / "rainbow" / "sky" / "make_storm_sky.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    rgb = module.storm_sky()
+    with open(path, "wb") as f:
+        f.write(b"PF\n%d %d\n-1.0\n" % (rgb.shape[1], rgb.shape[0]))
+        f.write(np.ascontiguousarray(rgb[::-1], "<f4").tobytes())
+    return path
 
 
 @pytest.fixture(scope="module")
@@ -70,9 +88,11 @@ def cache(tmp_path_factory):
     return tmp_path_factory.mktemp("tables")
 
 
-@pytest.mark.parametrize("options", [{}, {"exposure": 25.0}, {"raindrops": True}],
-                         ids=["auto_exposure", "fixed_exposure", "azimuth_table"])
+@pytest.mark.parametrize("options", [{}, {"exposure": 25.0}, {"raindrops": True}, {"image_sky": True}],
+                         ids=["auto_exposure", "fixed_exposure", "azimuth_table", "image_sky"])
 def test_screenshot_is_the_library_png(ctx, cache, tmp_path, options):
+    if options.get("image_sky"):
+        options = dict(options, image_sky=storm_sky_pfm(tmp_path / "storm_sky.pfm"))
     scene = double_bow(**options)
     path = tmp_path / "double_bow.rainbow.json"
     table = sky.export(scene, path, cache_dir=cache)
