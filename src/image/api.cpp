@@ -11,9 +11,15 @@ using namespace arcus::api;
 arcus_status arcus_image_read(const char* path, uint32_t* width, uint32_t* height, float* rgb) {
   return without_context([&] {
     require_pointer(path, "path");
+    if (!rgb) {  // the size query reads the header only, not the pixels twice
+      const auto size = image::read_size(path);
+      if (width) *width = static_cast<uint32_t>(size[0]);
+      if (height) *height = static_cast<uint32_t>(size[1]);
+      return;
+    }
     const image::Image im = image::read_image(path);
     if (width) *width = static_cast<uint32_t>(im.width);
     if (height) *height = static_cast<uint32_t>(im.height);
-    if (rgb) std::copy(im.pixels.begin(), im.pixels.end(), rgb);
+    std::copy(im.pixels.begin(), im.pixels.end(), rgb);
   });
 }

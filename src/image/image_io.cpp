@@ -62,7 +62,8 @@ struct Read {
   bool encoded = false;  // integer pixels not declared linear: sRGB-encoded
 };
 
-Read read_file(const std::string& path) {
+// The file opened, its header read and checked (a flat image with pixels), no pixels.
+std::unique_ptr<OIIO::ImageInput> open_file(const std::string& path) {
   // Colour as stored: OIIO would otherwise multiply it by alpha, which for an encoded
   // file comes before decoding and darkens translucent texels twice.
   OIIO::ImageSpec config;
@@ -74,6 +75,12 @@ Read read_file(const std::string& path) {
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
     fail(ARCUS_ERROR_IO, path + ": image is " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
                              " pixels of " + std::to_string(spec.nchannels) + " channels");
+  return in;
+}
+
+Read read_file(const std::string& path) {
+  const auto in = open_file(path);
+  const OIIO::ImageSpec& spec = in->spec();
   Read read;
   Image& image = read.image;
   image.width = spec.width;
@@ -132,6 +139,11 @@ void write_png(const std::string& path, const Image& linear_rgb, double exposure
 }
 
 Image read_channels(const std::string& path) { return read_file(path).image; }
+
+std::array<int, 2> read_size(const std::string& path) {
+  const auto in = open_file(path);
+  return {in->spec().width, in->spec().height};
+}
 
 Image read_image(const std::string& path) {
   const Read read = read_file(path);

@@ -37,6 +37,9 @@ void write_png(const std::string& path, const Image& linear_rgb, double exposure
 // dropped, and colour is not multiplied by it.
 Image read_image(const std::string& path);
 
+// The width and height read_image would return, from the file's header alone.
+std::array<int, 2> read_size(const std::string& path);
+
 // Reads the first image of a file with every channel as stored, by name, no colour
 // conversion: the counterpart of write_exr.
 Image read_channels(const std::string& path);

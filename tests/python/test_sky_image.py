@@ -11,13 +11,7 @@ import pytest
 
 import arcus
 from arcus import sky
-
-
-def write_pfm(path, rgb):
-    """A PFM file (float32, rows stored bottom-up, little-endian) of an (H, W, 3) array."""
-    with open(path, "wb") as f:
-        f.write(b"PF\n%d %d\n-1.0\n" % (rgb.shape[1], rgb.shape[0]))
-        f.write(np.ascontiguousarray(rgb[::-1], "<f4").tobytes())
+from image_files import write_pfm
 
 
 def bilinear(image, u, v):

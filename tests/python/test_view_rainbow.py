@@ -17,6 +17,7 @@ import pytest
 
 import arcus
 from arcus import sky
+from image_files import write_pfm
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -68,19 +69,14 @@ def double_bow(exposure=0.0, raindrops=False, image_sky=False):
 
 
 def storm_sky_pfm(path):
-    """data/rainbow/sky/make_storm_sky.py's panorama as a PFM file (float, rows bottom-up)."""
+    """data/rainbow/sky/make_storm_sky.py's panorama as a PFM file."""
     import importlib.util
 
-    import numpy as np
     spec = importlib.util.spec_from_file_location("make_storm_sky",
                                                   REPO / "data" / "rainbow" / "sky" / "make_storm_sky.py")
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
-    rgb = module.storm_sky()
-    with open(path, "wb") as f:
-        f.write(b"PF\n%d %d\n-1.0\n" % (rgb.shape[1], rgb.shape[0]))
-        f.write(np.ascontiguousarray(rgb[::-1], "<f4").tobytes())
-    return path
+    return write_pfm(path, module.storm_sky())
 
 
 @pytest.fixture(scope="module")
