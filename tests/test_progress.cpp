@@ -87,4 +87,62 @@ TEST_F(Progress, ACancelledJobKeepsItsResultsSoFarAndFlagsTheRest) {
   }
 }
 
+// What a progress callback tries on the context running its job (and on another).
+struct Reentry {
+  arcus_context_t* ctx;
+  arcus_field_t* field;  // the job's field, whose only user reference the callback drops
+  arcus_context_t* other;
+  arcus_status kind_status = ARCUS_SUCCESS, release_status = ARCUS_SUCCESS, context_status = ARCUS_SUCCESS;
+  arcus_status other_status = ARCUS_ERROR_INVALID_ARGUMENT;
+  std::string message;
+  int calls = 0;
+};
+
+int32_t reenter(void* user, double) {
+  auto* r = static_cast<Reentry*>(user);
+  if (r->calls++ > 0) return 0;
+  arcus_field_kind kind;
+  r->kind_status = arcus_field_get_kind(r->field, &kind);
+  r->message = arcus_last_error();
+  r->release_status = arcus_field_release(r->field);
+  arcus_device_info info;
+  r->context_status = arcus_context_get_device(r->ctx, &info);
+  // Another context is free: calls on it work, objects made there too.
+  arcus_field_t* f = nullptr;
+  r->other_status = arcus_field_create_constant(r->other, 1.0, &f);
+  arcus_field_release(f);
+  return 0;
+}
+
+TEST_F(Progress, ACallbackCallingItsOwnContextGetsReentrantInsteadOfADeadlock) {
+  // Before: every such call waited for the lock its own thread held, for ever.
+  arcus_context_t* other = nullptr;
+  ASSERT_EQ(arcus_context_create(ARCUS_DEVICE_DEFAULT, &other), ARCUS_SUCCESS);
+  ContextPtr other_guard(other);
+  arcus_field_t* field = nullptr;
+  const double g[3] = {0, 0.1, 0};
+  ASSERT_EQ(arcus_field_create_linear(ctx(), 1.0, g, &field), ARCUS_SUCCESS);
+  Rays rays;
+  for (int i = 0; i < 64; ++i) rays.add({0, 0.01 * i, 0}, {1, 0.001 * i, 0});
+  arcus_advance_params p = fixed(ARCUS_METHOD_RK4, 2e-4, 1000.0);
+  Reentry r{ctx(), field, other};
+  p.progress = reenter;
+  p.progress_user = &r;
+  const Trace t = trace(ctx(), field, p, rays);
+  ASSERT_EQ(t.status, ARCUS_SUCCESS) << last_error();
+  ASSERT_GE(r.calls, 1);
+  EXPECT_EQ(r.kind_status, ARCUS_ERROR_REENTRANT);
+  EXPECT_TRUE(contains_ci(r.message.c_str(), "progress callback")) << r.message;
+  EXPECT_EQ(r.release_status, ARCUS_ERROR_REENTRANT) << "refused: the reference stays the caller's";
+  EXPECT_EQ(r.context_status, ARCUS_ERROR_REENTRANT);
+  EXPECT_EQ(r.other_status, ARCUS_SUCCESS);
+  EXPECT_STREQ(arcus_status_string(ARCUS_ERROR_REENTRANT), "ARCUS_ERROR_REENTRANT");
+  // The refused release did nothing: the field is the caller's to release now.
+  arcus_field_kind kind;
+  EXPECT_EQ(arcus_field_get_kind(field, &kind), ARCUS_SUCCESS);
+  EXPECT_EQ(arcus_field_release(field), ARCUS_SUCCESS);
+  // The job's results are whole.
+  for (size_t i = 0; i < rays.size(); ++i) EXPECT_EQ(t.ray_status[i], ARCUS_RAY_DONE);
+}
+
 }  // namespace

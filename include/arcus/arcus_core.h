@@ -25,9 +25,12 @@
  *   not run concurrently on one context.  Contexts are independent: use one context per
  *   thread to run jobs in parallel.  The last-error message is per context (shared by
  *   its threads); read it from the thread that saw the failure before making another
- *   call.  Retain and release are atomic.  A progress callback runs on the calling
- *   thread with the context's lock held: it must not call arcus on that context, nor
- *   release the last reference to one of its objects.
+ *   call.  Retain and release are atomic, and a call keeps the objects it was handed
+ *   alive until it returns, even when another thread releases their last reference
+ *   meanwhile.  A progress callback runs on the calling thread with the context's lock
+ *   held: a call it makes on that context or any of its objects (retain and release
+ *   included) returns ARCUS_ERROR_REENTRANT and does nothing (the error callback is not
+ *   called for it); calls on other contexts work.
  *
  * Environment
  *   ARCUS_DEVICE     the default device: an index, or part of the device/platform name
@@ -77,7 +80,14 @@ typedef enum arcus_status {
    * because the progress callback cancelled the job: ARCUS_RAY_CANCELLED).            */
   ARCUS_ERROR_INVALID_RAYS = 8,
   ARCUS_ERROR_PATH_OVERFLOW = 9,
-  ARCUS_ERROR_CANCELLED = 10
+  ARCUS_ERROR_CANCELLED = 10,
+  /* A call on a context (or one of its objects) made from inside a progress callback of
+   * a call on that same context: refused, nothing done (the context is busy with the
+   * job that runs the callback).  Make the call after the job returns.               */
+  ARCUS_ERROR_REENTRANT = 11,
+  /* A result came out NaN or infinite (an image's pixel, ...): no job is returned; the
+   * message says which result and where.                                              */
+  ARCUS_ERROR_NOT_FINITE = 12
 } arcus_status;
 
 /* Human-readable name of a status ("ARCUS_ERROR_INVALID_ARGUMENT"). Never NULL. */

@@ -11,6 +11,7 @@
 #include "core/job.h"
 
 using arcus::Handle;
+using arcus::HandleRef;
 using arcus::HandleType;
 using arcus::require;
 using arcus::require_pointer;
@@ -24,14 +25,38 @@ namespace arcus::api {
 
 void set_thread_error(const std::string& message) { t_last_error = message; }
 
-arcus_status bad_handle(const void* handle, const std::string& message) {
+arcus_status bad_handle(const void* handle, arcus_status status, const std::string& message) {
   set_thread_error(message);
-  if (Handle* other = find_any_handle(handle)) {
-    arcus_context_t* ctx = context_of(other);
-    std::lock_guard<std::mutex> lock(ctx->lock);
+  const arcus::HandleRef other(arcus::retain_any_handle(handle));
+  if (other) {
+    arcus_context_t* ctx = context_of(other.get());
+    arcus::ContextLock lock(ctx);
     ctx->last_error = message;
   }
-  return ARCUS_ERROR_INVALID_ARGUMENT;
+  return status;
+}
+
+HandleRef hold(const void* handle, HandleType type, const char* name, arcus_status* status) {
+  std::string message;
+  HandleRef ref;
+  arcus_context_t* reentered = nullptr;
+  *status = run_catching(
+      [&](std::string*) {
+        ref = HandleRef(arcus::retain_handle(handle, type, name, arcus::refuse_reentry, &reentered));
+        return ARCUS_SUCCESS;
+      },
+      &message);
+  if (*status == ARCUS_SUCCESS) return ref;
+  if (reentered) {
+    // This thread is inside a call on that context, which holds its lock and keeps it
+    // alive: the message is stored without a lock or a reference.  No error callback:
+    // it would run under the lock, and a callback that calls arcus would re-enter again.
+    set_thread_error(message);
+    reentered->last_error = message;
+  } else {
+    bad_handle(handle, *status, message);
+  }
+  return ref;
 }
 
 }  // namespace arcus::api
@@ -51,6 +76,8 @@ const char* arcus_status_string(arcus_status status) {
     case ARCUS_ERROR_INVALID_RAYS: return "ARCUS_ERROR_INVALID_RAYS";
     case ARCUS_ERROR_PATH_OVERFLOW: return "ARCUS_ERROR_PATH_OVERFLOW";
     case ARCUS_ERROR_CANCELLED: return "ARCUS_ERROR_CANCELLED";
+    case ARCUS_ERROR_REENTRANT: return "ARCUS_ERROR_REENTRANT";
+    case ARCUS_ERROR_NOT_FINITE: return "ARCUS_ERROR_NOT_FINITE";
   }
   return "ARCUS_ERROR_UNKNOWN";
 }
@@ -105,8 +132,9 @@ arcus_status arcus_context_get_device(arcus_context_t* ctx, arcus_device_info* i
 
 const char* arcus_context_last_error(arcus_context_t* ctx) {
   if (!ctx) return "ctx is NULL";
-  Handle* h = arcus::find_any_handle(ctx);
-  if (!h || h->type() != HandleType::Context) return "ctx is not a live arcus context";
+  const HandleRef h(arcus::retain_any_handle(ctx));
+  if (!h || h.get()->type() != HandleType::Context) return "ctx is not a live arcus context";
+  // The caller holds a reference (this one is not the last), so the string outlives it.
   return ctx->last_error.c_str();
 }
 

@@ -60,7 +60,7 @@ arcus_status locked(arcus_context_t* ctx, Body&& body) {
   arcus_error_callback callback;
   void* user;
   {
-    std::lock_guard<std::mutex> lock(ctx->lock);
+    ContextLock lock(ctx);
     status = run_catching(body, &message);
     if (status != ARCUS_SUCCESS) ctx->last_error = message;
     callback = ctx->callback;
@@ -73,25 +73,26 @@ arcus_status locked(arcus_context_t* ctx, Body&& body) {
   return status;
 }
 
-// A bad handle: the message goes to the thread, and to the context of the object it
-// points at when it is a live object of another type.
-arcus_status bad_handle(const void* handle, const std::string& message);
+// A handle that could not be used: the message goes to the thread, and to the context
+// of the object it points at when that is a live object (of another type, or one whose
+// context this thread is inside of: a re-entry).  Returns `status`.
+arcus_status bad_handle(const void* handle, arcus_status status, const std::string& message);
+
+// A reference to `handle`, checked (live, of the right type, not a re-entry), for a
+// call; on failure the status (with the message reported as bad_handle does) and an
+// empty reference.
+HandleRef hold(const void* handle, HandleType type, const char* name, arcus_status* status);
 
 // A call on the object `handle` of type T (checked: live, of the right type), under
-// its context's lock.  body(T*, std::string* message) returns the status.
+// its context's lock, holding a reference to it until the call returns.
+// body(T*, std::string* message) returns the status.
 template <class T, class Body>
 arcus_status on(const void* handle, HandleType type, const char* name, Body&& body) {
-  Handle* h = nullptr;
-  std::string message;
-  const arcus_status found = run_catching(
-      [&](std::string*) {
-        h = find_handle(handle, type, name);
-        return ARCUS_SUCCESS;
-      },
-      &message);
-  if (found != ARCUS_SUCCESS) return bad_handle(handle, message);
-  T* object = static_cast<T*>(h);
-  return locked(context_of(h), [&](std::string* msg) { return body(object, msg); });
+  arcus_status status;
+  const HandleRef ref = hold(handle, type, name, &status);
+  if (!ref) return status;
+  T* object = static_cast<T*>(ref.get());
+  return locked(context_of(object), [&](std::string* msg) { return body(object, msg); });
 }
 
 // As `on`, for a body(T*) that returns nothing.
@@ -107,33 +108,26 @@ arcus_status simple(const void* handle, HandleType type, const char* name, Body&
 // its last object is gone).
 template <class T>
 arcus_status retain(T* handle, HandleType type, const char* name) {
-  std::string message;
-  const arcus_status st = run_catching(
-      [&](std::string*) {
-        find_handle(handle, type, name)->retain();
-        return ARCUS_SUCCESS;
-      },
-      &message);
-  return st == ARCUS_SUCCESS ? st : bad_handle(handle, message);
+  arcus_status status;
+  HandleRef ref = hold(handle, type, name, &status);
+  if (!ref) return status;
+  (void)ref.release_to_caller();  // the reference taken is the caller's new one
+  return ARCUS_SUCCESS;
 }
 
 template <class T>
 arcus_status release(T* handle, HandleType type, const char* name) {
-  std::string message;
-  const arcus_status st = run_catching(
-      [&](std::string*) {
-        Handle* h = find_handle(handle, type, name);
-        if (type == HandleType::Context)
-          release_context(static_cast<arcus_context_t*>(h));
-        else
-          release_object(h);
-        return ARCUS_SUCCESS;
-      },
-      &message);
-  return st == ARCUS_SUCCESS ? st : bad_handle(handle, message);
+  arcus_status status;
+  const HandleRef ref = hold(handle, type, name, &status);
+  if (!ref) return status;
+  // The caller's reference goes now; the object is freed (if that was the last) when
+  // `ref`, this call's own, goes too.
+  release_handle(ref.get());
+  return ARCUS_SUCCESS;
 }
 
 // `p` as an object of type T of `ctx`: checked live, of the type, and of that context.
+// For a call holding ctx's lock, which keeps the object from being freed meanwhile.
 template <class T>
 T* object_of(arcus_context_t* ctx, const void* p, HandleType type, const char* name) {
   Handle* h = find_handle(p, type, name);

@@ -1,6 +1,18 @@
 #include "core/context.h"
 
+#include <algorithm>
+#include <vector>
+
+#include "core/error.h"
+
 namespace arcus {
+namespace {
+
+// The contexts whose lock this thread holds, innermost last (a job on one context may
+// run a callback that calls another).
+thread_local std::vector<const arcus_context_t*> t_held;
+
+}  // namespace
 
 void retain_context(arcus_context_t* ctx) { ctx->retain(); }
 
@@ -11,11 +23,60 @@ void release_context(arcus_context_t* ctx) {
 void release_object(Handle* object) {
   if (!object->drop()) return;
   arcus_context_t* ctx = object->owner();
-  {
-    std::lock_guard<std::mutex> lock(ctx->lock);
+  if (holds_lock(ctx)) {
+    // The last reference went inside a call that holds the lock (a call's own reference
+    // to an object found under it): the lock is this thread's already.
+    delete object;
+  } else {
+    ContextLock lock(ctx);
     delete object;
   }
   release_context(ctx);
+}
+
+void release_handle(Handle* h) {
+  if (h->type() == HandleType::Context)
+    release_context(static_cast<arcus_context_t*>(h));
+  else
+    release_object(h);
+}
+
+ContextLock::ContextLock(arcus_context_t* ctx) : ctx_(ctx) {
+  // Taking a lock this thread holds would deadlock; every call path refuses re-entry
+  // before it gets here (refuse_reentry), so this is the last line of defence.
+  if (holds_lock(ctx)) fail(ARCUS_ERROR_REENTRANT, "a call re-entered its context (from a progress callback)");
+  ctx->lock.lock();
+  t_held.push_back(ctx);
+}
+
+ContextLock::~ContextLock() {
+  t_held.erase(std::find(t_held.begin(), t_held.end(), ctx_));
+  ctx_->lock.unlock();
+}
+
+bool holds_lock(const arcus_context_t* ctx) { return std::find(t_held.begin(), t_held.end(), ctx) != t_held.end(); }
+
+void refuse_reentry(Handle* h, void* reentered) {
+  arcus_context_t* ctx = context_of(h);
+  if (!holds_lock(ctx)) return;
+  if (reentered) *static_cast<arcus_context_t**>(reentered) = ctx;
+  fail(ARCUS_ERROR_REENTRANT, std::string("a call on this ") + handle_type_name(h->type()) +
+                                    " from a progress callback of a job on its context: the context is busy with "
+                                    "that job; make the call after the job returns");
+}
+
+HandleRef& HandleRef::operator=(HandleRef&& other) noexcept {
+  if (this != &other) {
+    reset();
+    h_ = other.h_;
+    other.h_ = nullptr;
+  }
+  return *this;
+}
+
+void HandleRef::reset() {
+  if (h_) release_handle(h_);
+  h_ = nullptr;
 }
 
 arcus_context_t* context_of(Handle* h) {
@@ -26,7 +87,7 @@ size_t local_work_size(const arcus_context_t* ctx) { return ctx->info.is_gpu ? 0
 
 namespace testing {
 void set_fp64(arcus_context_t* ctx, bool fp64) {
-  std::lock_guard<std::mutex> lock(ctx->lock);
+  ContextLock lock(ctx);
   ctx->info.fp64 = fp64 ? 1 : 0;
 }
 }  // namespace testing

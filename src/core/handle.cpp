@@ -20,6 +20,24 @@ Registry& registry() {
   return *r;
 }
 
+// The object at `p` checked to be live and of `type`; the registry's lock is held by the
+// caller, so the object cannot finish its destruction meanwhile (~Handle needs the lock).
+// `before_type` (may be null) sees a live object before its type is checked.
+Handle* checked(const Registry& r, const void* p, HandleType type, const char* name,
+                void (*before_type)(Handle*, void*) = nullptr, void* user = nullptr) {
+  if (!p) fail(ARCUS_ERROR_INVALID_ARGUMENT, std::string(name) + " is NULL");
+  // Only a registered address is dereferenced, and it is a Handle by construction.
+  Handle* h = r.live.count(p) ? static_cast<Handle*>(const_cast<void*>(p)) : nullptr;
+  if (!h || !h->alive())
+    fail(ARCUS_ERROR_INVALID_ARGUMENT,
+         std::string(name) + " is not a live arcus handle (released already, or not an arcus object)");
+  if (before_type) before_type(h, user);
+  if (h->type() != type)
+    fail(ARCUS_ERROR_INVALID_ARGUMENT, std::string(name) + " is a " + handle_type_name(h->type()) + ", not a " +
+                                           handle_type_name(type));
+  return h;
+}
+
 }  // namespace
 
 const char* handle_type_name(HandleType type) {
@@ -47,24 +65,42 @@ Handle::~Handle() {
   r.live.erase(this);
 }
 
-Handle* find_any_handle(const void* p) {
+bool Handle::try_retain() {
+  int n = refs_.load();
+  while (n > 0)
+    if (refs_.compare_exchange_weak(n, n + 1)) return true;
+  return false;
+}
+
+void Handle::retain() {
+  if (!try_retain())
+    fail(ARCUS_ERROR_INVALID_ARGUMENT,
+         std::string("the ") + handle_type_name(type_) + " was released by another thread while in use");
+}
+
+Handle* retain_handle(const void* p, HandleType type, const char* name, void (*before_retain)(Handle*, void*),
+                      void* user) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  Handle* h = checked(r, p, type, name, before_retain, user);
+  if (!h->try_retain())
+    fail(ARCUS_ERROR_INVALID_ARGUMENT, std::string(name) + " is not a live arcus handle (released already)");
+  return h;
+}
+
+Handle* retain_any_handle(const void* p) {
   if (!p) return nullptr;
   Registry& r = registry();
   std::lock_guard<std::mutex> lock(r.mutex);
-  // Only a registered address is dereferenced, and it is a Handle by construction.
-  return r.live.count(p) ? static_cast<Handle*>(const_cast<void*>(p)) : nullptr;
+  if (!r.live.count(p)) return nullptr;
+  Handle* h = static_cast<Handle*>(const_cast<void*>(p));
+  return h->try_retain() ? h : nullptr;
 }
 
 Handle* find_handle(const void* p, HandleType type, const char* name) {
-  if (!p) fail(ARCUS_ERROR_INVALID_ARGUMENT, std::string(name) + " is NULL");
-  Handle* h = find_any_handle(p);
-  if (!h)
-    fail(ARCUS_ERROR_INVALID_ARGUMENT,
-         std::string(name) + " is not a live arcus handle (released already, or not an arcus object)");
-  if (h->type() != type)
-    fail(ARCUS_ERROR_INVALID_ARGUMENT, std::string(name) + " is a " + handle_type_name(h->type()) + ", not a " +
-                                           handle_type_name(type));
-  return h;
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  return checked(r, p, type, name);
 }
 
 }  // namespace arcus

@@ -3,6 +3,11 @@
 // so a call can tell a live handle of the right type from NULL, a released handle, a
 // handle of another type or a pointer that is no arcus object at all, and answer each
 // with ARCUS_ERROR_INVALID_ARGUMENT instead of undefined behaviour.
+//
+// A call holds a reference to the object it was handed for as long as it runs
+// (HandleRef, core/context.h), taken under the registry's lock: another thread's release
+// of the last user reference then only drops the count, and the object is freed when
+// the call ends, never while it is in use.
 #pragma once
 
 #include <atomic>
@@ -28,9 +33,15 @@ class Handle {
 
   HandleType type() const { return type_; }
   arcus_context_t* owner() const { return owner_; }
-  void retain() { refs_.fetch_add(1); }
+  // One more reference.  An object whose count has reached 0 is being freed and is
+  // never revived: retaining it is ARCUS_ERROR_INVALID_ARGUMENT ("... was released").
+  void retain();
+  // As retain, but false instead of throwing.
+  bool try_retain();
   // Drops one reference; true when it was the last (the caller then deletes).
   bool drop() { return refs_.fetch_sub(1) == 1; }
+  // False once the last reference is gone (the object awaits deletion).
+  bool alive() const { return refs_.load() > 0; }
 
  private:
   const HandleType type_;
@@ -38,12 +49,20 @@ class Handle {
   std::atomic<int> refs_{1};
 };
 
-// The live object at `p`, checked to be of `type`; throws ARCUS_ERROR_INVALID_ARGUMENT
-// naming `name` ("field is NULL", "field is not a live arcus handle", "field is a job,
-// not a field").
-Handle* find_handle(const void* p, HandleType type, const char* name);
+// What a handle is, checked under the registry's lock: `p` must be a live object
+// (registered, count above 0) of `type`, else ARCUS_ERROR_INVALID_ARGUMENT naming
+// `name` ("field is NULL", "field is not a live arcus handle", "field is a job, not a
+// field").  `before_retain` (may be null) sees a live object and `user` before its type
+// is checked, still under the lock, and may throw to refuse it; then a reference is
+// taken for the caller, who must drop it.
+Handle* retain_handle(const void* p, HandleType type, const char* name,
+                      void (*before_retain)(Handle*, void* user) = nullptr, void* user = nullptr);
 
-// The live object at `p` of any type, or null.
-Handle* find_any_handle(const void* p);
+// The live object at `p` of any type, retained for the caller, or null.
+Handle* retain_any_handle(const void* p);
+
+// The live object at `p`, checked as retain_handle does, without a reference: only for
+// a caller that holds the lock of the object's context, which keeps it from being freed.
+Handle* find_handle(const void* p, HandleType type, const char* name);
 
 }  // namespace arcus

@@ -1,17 +1,14 @@
 #include "core/runtime.h"
 
-#include <sys/stat.h>
-#include <unistd.h>
-
-#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
+#include <optional>
 #include <vector>
 
+#include "core/cache_dir.h"
 #include "core/error.h"
 #include "core/features.h"
 
@@ -44,7 +41,9 @@ std::string build_log(cl_program program, cl_device_id device) {
 // ---- the program cache on disk --------------------------------------------------------
 // A file holds: the magic line, the key it was stored under (compared in full, so a
 // hash collision cannot hand back another program), the binary, and a checksum of the
-// binary.  Anything that does not match is rebuilt, never trusted.
+// binary.  Anything that does not match is rebuilt.  The checksum only catches damage:
+// what keeps out a planted program is that entries are read only from a directory and
+// files of this user's own that nobody else can write (CacheDir).
 constexpr char kMagic[] = "arcus program cache 1\n";
 
 std::string cache_key(const DeviceEntry& d, const std::string& options, const std::string& text) {
@@ -56,11 +55,16 @@ std::string cache_key(const DeviceEntry& d, const std::string& options, const st
          "\nsource=" + hash + "\n";
 }
 
-std::string cache_file(const std::string& dir, const std::string& key) {
+// The file name of `key` in the cache directory.
+std::string cache_file(const std::string& key) {
   char name[40];
   std::snprintf(name, sizeof name, "%016llx.clbin", static_cast<unsigned long long>(fnv1a64(key.data(), key.size())));
-  return (fs::path(dir) / name).string();
+  return name;
 }
+
+// The largest entry read back: PoCL's binaries are a few hundred kB, a GPU driver's a few
+// MB; a bigger file is nothing arcus wrote and is not read into memory.
+constexpr size_t kMaxEntryBytes = size_t(256) << 20;
 
 void put_u64(std::string* out, uint64_t v) { out->append(reinterpret_cast<const char*>(&v), sizeof v); }
 
@@ -71,12 +75,12 @@ bool get_u64(const std::string& in, size_t* pos, uint64_t* v) {
   return true;
 }
 
-// The binary stored under `key`, or "" if the file is missing or not intact.
-std::string load_binary(const std::string& file, const std::string& key) {
-  struct stat st;
-  if (::stat(file.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return "";
-  std::ifstream in(file, std::ios::binary);
-  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+// The binary stored under `key`, or "" if the entry is missing, not this user's own
+// (CacheDir::read) or not intact.
+std::string load_binary(const CacheDir& dir, const std::string& file, const std::string& key) {
+  const std::optional<std::string> entry = dir.read(file, kMaxEntryBytes);
+  if (!entry) return "";
+  const std::string& data = *entry;
   const size_t magic = sizeof kMagic - 1;
   if (data.compare(0, magic, kMagic) != 0) return "";
   size_t pos = magic;
@@ -92,29 +96,14 @@ std::string load_binary(const std::string& file, const std::string& key) {
 }
 
 // Best effort: a cache that cannot be written only costs the next process a build.
-// Written to a temporary name and renamed, so a reader never sees half a file.
-void store_binary(const std::string& dir, const std::string& file, const std::string& key, const std::string& binary) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  static std::atomic<unsigned> counter{0};
-  const std::string tmp = file + ".tmp" + std::to_string(::getpid()) + "." + std::to_string(counter++);
+void store_binary(const CacheDir& dir, const std::string& file, const std::string& key, const std::string& binary) {
   std::string data(kMagic);
   put_u64(&data, key.size());
   data += key;
   put_u64(&data, binary.size());
   data += binary;
   put_u64(&data, fnv1a64(binary.data(), binary.size()));
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out.write(data.data(), static_cast<std::streamsize>(data.size()));
-    if (!out) {
-      out.close();
-      fs::remove(tmp, ec);
-      return;
-    }
-  }
-  fs::rename(tmp, file, ec);
-  if (ec) fs::remove(tmp, ec);
+  dir.write(file, data);
 }
 
 std::string program_binary(cl_program program) {
@@ -183,12 +172,12 @@ BuiltProgram DeviceRuntime::program(const KernelSource& source, arcus_features f
   const auto start = std::chrono::steady_clock::now();
   const std::string options = build_options(features, layout);
   const std::string text = kernel_text(source);
-  const std::string dir = program_cache_dir();
+  const CacheDir dir(program_cache_dir(), "program cache");
   const std::string disk_key = cache_key(entry_, options, text);
-  const std::string file = dir.empty() ? "" : cache_file(dir, disk_key);
+  const std::string file = cache_file(disk_key);
 
-  if (!file.empty()) {
-    const std::string binary = load_binary(file, disk_key);
+  if (dir.usable()) {
+    const std::string binary = load_binary(dir, file, disk_key);
     if (!binary.empty()) {
       ClProgram p = program_from_binary(context_.get(), entry_.device, binary, options);
       if (p) {
@@ -208,7 +197,7 @@ BuiltProgram DeviceRuntime::program(const KernelSource& source, arcus_features f
   if (err != CL_SUCCESS)
     fail(ARCUS_ERROR_KERNEL_BUILD, "building kernel " + std::string(source.name) + " failed (" + cl_error_name(err) +
                                        ") with options '" + options + "':\n" + build_log(program.get(), entry_.device));
-  if (!file.empty()) {
+  if (dir.usable()) {
     const std::string binary = program_binary(program.get());
     if (!binary.empty()) store_binary(dir, file, disk_key, binary);
   }
