@@ -97,9 +97,12 @@ arcus_status arcus_field_create_grid_from_file(arcus_context_t* ctx, const char*
                                                const double spacing[3], arcus_field_t** out) {
   // The file is read before the context's lock is taken: a slow or blocking file must
   // not hold up every other call on the context.  Its errors are reported under the lock.
+  arcus_status status;
+  const arcus::HandleRef held = hold(ctx, arcus::HandleType::Context, "ctx", &status);  // alive while unlocked
+  if (!held) return status;
   std::vector<double> values;
   std::exception_ptr failed;
-  if (arcus::find_any_handle(ctx) && out) {
+  if (out) {
     try {
       values = arcus::curved::read_grid_file(path, type, arcus::curved::grid_value_count(dims, origin, spacing));
     } catch (...) {

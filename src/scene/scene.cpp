@@ -71,12 +71,15 @@ extern "C" {
 arcus_status arcus_scene_load(arcus_context_t* ctx, const char* path, arcus_scene_t** out) {
   // Reading and checking the file happen before the context's lock is taken; the loader
   // takes it only to create objects.  Errors of either part are reported under the lock.
+  arcus_status status;
+  const arcus::HandleRef held = hold(ctx, HandleType::Context, "ctx", &status);  // alive while unlocked
+  if (!held) return status;
   arcus_scene_s* scene = nullptr;
   std::exception_ptr failed;
-  if (arcus::find_any_handle(ctx) && out && path) {
+  if (out && path) {
     try {
       scene = arcus::scene::loader_for(path)(ctx, path, [&](const std::function<void()>& create) {
-        std::lock_guard<std::mutex> lock(ctx->lock);
+        arcus::ContextLock lock(ctx);
         create();
       });
     } catch (...) {
