@@ -4,7 +4,9 @@
 // property value is always overwritten); GCC 12 flags every instantiation of that.
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 
+#include <OpenMesh/Core/IO/IOManager.hh>
 #include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/IO/importer/ImporterT.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 
 #include <algorithm>
@@ -17,6 +19,9 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/files.h"
+#include "core/limits.h"
+#include "geometry/mesh_scan.h"
 
 namespace arcus::geometry {
 namespace {
@@ -36,49 +41,31 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-// The checks OpenMesh does not make (it reports all of them as one `false`).
-void check_readable(const std::string& path) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::file_status st = fs::status(path, ec);
-  if (ec || !fs::exists(st)) fail(ARCUS_ERROR_IO, path + ": no such file");
-  if (!fs::is_regular_file(st)) fail(ARCUS_ERROR_IO, path + ": not a regular file");
-  if (!std::ifstream(path, std::ios::binary)) fail(ARCUS_ERROR_IO, path + ": cannot be opened for reading");
-}
-
-// OpenMesh's STL reader merges equal vertices through an ordered map, where a NaN is
-// "equal" to whatever it is compared with: a NaN vertex silently becomes another
-// vertex.  So STL files are scanned for non-finite coordinates before OpenMesh reads them.
-void check_stl_finite(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  uint32_t count = 0;
-  if (bytes.size() >= 84) std::memcpy(&count, bytes.data() + 80, 4);
-  const bool binary = bytes.size() >= 84 && bytes.size() == 84 + 50 * static_cast<uint64_t>(count);
-  auto bad = [&](size_t triangle) {
-    fail(ARCUS_ERROR_INVALID_ARGUMENT, path + ": triangle " + std::to_string(triangle) + " has a non-finite vertex");
-  };
-  if (binary) {
-    for (uint32_t t = 0; t < count; ++t)
-      for (int k = 0; k < 9; ++k) {
-        float x;
-        std::memcpy(&x, bytes.data() + 84 + 50 * static_cast<size_t>(t) + 12 + 4 * k, 4);
-        if (!std::isfinite(x)) bad(t);
+// OpenMesh's importer, counting what the reader hands it: every vertex, every face, and
+// the faces naming a vertex that does not exist (which the importer drops with a line
+// on stderr).  Faces repeating a vertex are dropped too, harmlessly: they have no area.
+struct CountingImporter : OpenMesh::IO::ImporterT<OmMesh> {
+  using ImporterT::ImporterT;
+  size_t vertices = 0, faces = 0, bad_faces = 0;
+  OpenMesh::VertexHandle add_vertex(const OpenMesh::Vec3f& p) override { return counted(ImporterT::add_vertex(p)); }
+  OpenMesh::VertexHandle add_vertex(const OpenMesh::Vec3d& p) override { return counted(ImporterT::add_vertex(p)); }
+  OpenMesh::VertexHandle add_vertex() override { return counted(ImporterT::add_vertex()); }
+  OpenMesh::FaceHandle add_face(const VHandles& corners) override {
+    ++faces;
+    for (const auto& v : corners)
+      if (!v.is_valid() || static_cast<size_t>(v.idx()) >= vertices) {
+        ++bad_faces;
+        return OpenMesh::FaceHandle();
       }
-    return;
+    return ImporterT::add_face(corners);
   }
-  std::istringstream text(bytes);
-  size_t vertices = 0;
-  for (std::string word; text >> word;) {
-    if (word != "vertex") continue;
-    for (int k = 0; k < 3; ++k) {
-      std::string number;
-      text >> number;
-      if (!std::isfinite(std::strtod(number.c_str(), nullptr))) bad(vertices / 3);
-    }
+
+ private:
+  OpenMesh::VertexHandle counted(OpenMesh::VertexHandle v) {
     ++vertices;
+    return v;
   }
-}
+};
 
 }  // namespace
 
@@ -86,14 +73,29 @@ Mesh load_mesh(const std::string& path) {
   const std::string ext = lower_extension(path);
   if (ext != ".obj" && ext != ".ply" && ext != ".off" && ext != ".stl")
     fail(ARCUS_ERROR_INVALID_ARGUMENT, path + ": unknown mesh format '" + ext + "' (expected .obj, .ply, .off or .stl)");
-  check_readable(path);
-  if (ext == ".stl") check_stl_finite(path);
+  // Read once, scanned, then parsed from memory: nothing OpenMesh opens itself (an OBJ's
+  // material library, a path swapped for a FIFO meanwhile) can block or differ.
+  const std::string bytes = files::read_all(path, limits::mesh_file_bytes(), "ARCUS_MAX_MESH_BYTES");
+  const Declared declared = scan_mesh(path, ext, bytes);
+  // OpenMesh's mesh and ours: a few hundred bytes a vertex and face at most.
+  limits::require_host_memory(400.0 * (double(declared.vertices) + double(declared.faces)), path + ": the mesh");
 
   OmMesh om;
   om.request_vertex_texcoords2D();
+  CountingImporter importer(om);
   OpenMesh::IO::Options options = OpenMesh::IO::Options::VertexTexCoord;
-  if (!OpenMesh::IO::read_mesh(om, path, options))
+  std::istringstream in(bytes, std::ios::binary);
+  if (!OpenMesh::IO::IOManager().read(in, ext.substr(1), importer, options))
     fail(ARCUS_ERROR_INVALID_ARGUMENT, path + ": not a readable " + ext.substr(1) + " mesh");
+  if (importer.bad_faces)
+    fail(ARCUS_ERROR_INVALID_ARGUMENT, path + ": " + std::to_string(importer.bad_faces) +
+                                           " faces name vertices that do not exist");
+  // STL vertices are merged as they are read, so only its triangles are counted.
+  if ((ext != ".stl" && importer.vertices != declared.vertices) || importer.faces != declared.faces)
+    fail(ARCUS_ERROR_INVALID_ARGUMENT, path + ": OpenMesh read " + std::to_string(importer.vertices) + " vertices and " +
+                                           std::to_string(importer.faces) + " faces of the " +
+                                           std::to_string(declared.vertices) + " and " +
+                                           std::to_string(declared.faces) + " in the file");
 
   Mesh mesh;
   mesh.source = path;

@@ -1,20 +1,16 @@
 #include "scene/json_reader.h"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cfloat>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <system_error>
 
 #include "core/error.h"
+#include "core/files.h"
 #include "core/format.h"
+#include "core/limits.h"
 
 namespace arcus::json {
 
@@ -27,8 +23,6 @@ constexpr size_t kMaxDetail = 200;
 [[noreturn]] void fail_at(const std::string& file, const std::string& path, const std::string& what) {
   fail(ARCUS_ERROR_INVALID_ARGUMENT, file + ": " + path + ": " + what);
 }
-
-[[noreturn]] void fail_io(const std::string& file, const std::string& what) { fail(ARCUS_ERROR_IO, file + ": " + what); }
 
 // Bytes in the UTF-8 sequence starting at s[i] (RFC 3629: no overlongs, no surrogates,
 // nothing above U+10FFFF), or 0 if it is not a valid one.
@@ -155,48 +149,6 @@ bool only_whitespace(const std::string& text) {
   return text.find_first_not_of(" \t\r\n") == std::string::npos;
 }
 
-const char* file_kind(mode_t mode) {
-  if (S_ISDIR(mode)) return "a directory";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a regular file";
-}
-
-std::string errno_text(int err) { return std::error_code(err, std::generic_category()).message(); }
-
-// Reads the whole regular file at `path`; IO errors name the file.
-std::string read_regular_file(const std::string& path) {
-  // Written escaped: a message is a C string, which the NUL would cut short.
-  if (path.find('\0') != std::string::npos) fail_io(printable(path, 4096), "the file name contains a NUL character");
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) fail_io(path, "cannot read: " + errno_text(errno));
-  if (!S_ISREG(st.st_mode)) fail_io(path, std::string("is ") + file_kind(st.st_mode) + ", not a regular file");
-  // O_NONBLOCK and the second check: the path may have been swapped for a FIFO since.
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-  if (fd < 0) fail_io(path, "cannot open: " + errno_text(errno));
-  struct Closer {
-    int fd;
-    ~Closer() { ::close(fd); }
-  } closer{fd};
-  if (::fstat(fd, &st) != 0) fail_io(path, "cannot read: " + errno_text(errno));
-  if (!S_ISREG(st.st_mode)) fail_io(path, std::string("is ") + file_kind(st.st_mode) + ", not a regular file");
-  std::string text;
-  text.reserve(static_cast<size_t>(st.st_size));
-  char buf[65536];
-  for (;;) {
-    const ssize_t n = ::read(fd, buf, sizeof buf);
-    if (n == 0) break;
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      fail_io(path, "cannot read: " + errno_text(errno));
-    }
-    text.append(buf, static_cast<size_t>(n));
-  }
-  return text;
-}
-
 }  // namespace
 
 // ---- Document -----------------------------------------------------------------------
@@ -233,7 +185,9 @@ Document Document::from_text(const std::string& text, const std::string& file_na
   return Document(std::move(impl));
 }
 
-Document Document::from_file(const std::string& path) { return from_text(read_regular_file(path), path); }
+Document Document::from_file(const std::string& path) {
+  return from_text(files::read_all(path, limits::scene_file_bytes(), "ARCUS_MAX_SCENE_BYTES"), path);
+}
 
 Node Document::root() const { return Node(impl_->value, "$", impl_->file); }
 const Json& Document::value() const { return impl_->value; }

@@ -33,8 +33,8 @@ class Document {
  public:
   // `file_name` is only used in messages.
   static Document from_text(const std::string& text, const std::string& file_name);
-  // Checks with stat() that `path` is a regular file before opening it, so that a FIFO
-  // or a device never blocks the caller.
+  // Reads a regular file only (a FIFO or a device never blocks the caller) of at most
+  // ARCUS_MAX_SCENE_BYTES (64 MiB; core/files.h).
   static Document from_file(const std::string& path);
 
   Document(Document&&) noexcept;

@@ -1,5 +1,7 @@
 // Mesh loading: the bundled meshes, each format written by OpenMesh and read back, and
-// every way a file can be wrong (status and a message naming the file).
+// every way a file can be wrong (status and a message naming the file), including the
+// inputs OpenMesh's readers misread: they are refused before OpenMesh sees them, or
+// caught by counting what it handed over (geometry/mesh_scan.h).
 
 // OpenMesh's vectors leave their elements uninitialised on purpose; GCC 12 flags it.
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
@@ -7,9 +9,13 @@
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -58,14 +64,17 @@ OpenMesh::PolyMesh_ArrayKernelT<> pyramid() {
 }
 
 // Runs load_mesh(path) expecting `status` and a message naming the file.
-void expect_error(const std::string& path, arcus_status status) {
+// Returns the message.
+std::string expect_error(const std::string& path, arcus_status status) {
   try {
     load_mesh(path);
     ADD_FAILURE() << path << ": no error";
   } catch (const arcus::Error& e) {
     EXPECT_EQ(e.status(), status) << e.what();
     EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    return e.what();
   }
+  return "";
 }
 
 void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
@@ -179,6 +188,100 @@ TEST(Meshes, TransformedAppliesTheAffineMatrix) {
   EXPECT_EQ(t.triangles, m.triangles);
   const double bad[12] = {NAN, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
   EXPECT_THROW(arcus::geometry::transformed(m, bad), arcus::Error);
+}
+
+// ---- what OpenMesh misreads: refused, with the line -------------------------------------
+
+void expect_refused(const std::string& path, const std::string& text, const char* says) {
+  write_text(path, text);
+  const auto start = std::chrono::steady_clock::now();
+  const std::string message = expect_error(path, ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(message.find(says), std::string::npos) << path << ": " << message;
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0) << path;
+}
+
+TEST(MeshesHostile, APlyHeaderWithoutEndIsRefusedNotLoopedOn) {
+  // OpenMesh looped for ever on the first (21 bytes) and grew by 0.6 GB/s on the second.
+  TempDir dir;
+  expect_refused(dir.path() + "/short.ply", "ply\nformat ascii 1.0\n", "end_header");
+  std::string long_header = "ply\nformat ascii 1.0\n";
+  for (int i = 0; i < 5000; ++i) long_header += "comment padding padding padding\n";
+  expect_refused(dir.path() + "/long.ply", long_header + "element vertex 3\n", "end_header");
+  expect_refused(dir.path() + "/keyword.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nbogus\nend_header\n0\n",
+                 "line 5: unknown header keyword");
+}
+
+TEST(MeshesHostile, CountsAPlyHeaderDeclaresMustFitTheFile) {
+  TempDir dir;
+  const std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000\nproperty float x\n"
+                             "property float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                             "end_header\n";
+  expect_refused(dir.path() + "/huge.ply", header + std::string(64, '\0'), "need at least 12000000001 bytes");
+  expect_refused(dir.path() + "/text.ply",
+                 "ply\nformat ascii 1.0\nelement vertex 100\nproperty float x\nproperty float y\nproperty float z\n"
+                 "end_header\n0 0 0\n",
+                 "declares 100 vertices");
+}
+
+TEST(MeshesHostile, ObjVerticesOpenMeshWouldSkipAreRefusedWithTheirLine) {
+  // OpenMesh skipped each of these lines, so "f 1 2 3" below named other vertices.
+  TempDir dir;
+  const char* bad[] = {"nan 0 0", "0 inf 0", "0 0 1e+308", "1 2", "0x10 0 0", "1.5.5 0 0"};
+  for (const char* v : bad)
+    expect_refused(dir.path() + "/bad.obj", std::string("v 0 0 0\nv 1 0 0\nv ") + v + "\nv 0 1 0\nf 1 2 4\n",
+                   "line 3: vertex");
+  expect_refused(dir.path() + "/vt.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 nan\nf 1/1 2/1 3/1\n", "line 4: texture");
+  // Tiny values are fine: they read as (denormal or zero) floats.
+  write_text(dir.path() + "/tiny.obj", "v 0 0 0\nv 1e-50 1 0\nv 0 0 1\nf 1 2 3\n");
+  EXPECT_EQ(load_mesh(dir.path() + "/tiny.obj").triangle_count(), 1u);
+}
+
+TEST(MeshesHostile, FacesNamingMissingVerticesOrCoordinatesAreRefused) {
+  // OpenMesh dropped such faces with a line on stderr, and the render went on without them.
+  TempDir dir;
+  const std::string three = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  expect_refused(dir.path() + "/far.obj", three + "f 1 2 3\nf 1 2 9\n", "line 5: face: vertex index 9");
+  expect_refused(dir.path() + "/back.obj", three + "f -1 -2 -4\n", "vertex index -4");
+  expect_refused(dir.path() + "/zero.obj", three + "f 0 1 2\n", "is not a vertex index");
+  expect_refused(dir.path() + "/vt.obj", three + "vt 0 0\nf 1/1 2/2 3/1\n", "texture coordinate index 2");
+  expect_refused(dir.path() + "/two.obj", three + "f 1 2\n", "at least three corners");
+  expect_refused(dir.path() + "/off.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "line 6: face");
+  expect_refused(dir.path() + "/few.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n", "declares 4 vertices");
+  // A binary PLY face naming vertex 7 of 3: only OpenMesh's count of what it took shows it.
+  std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const float xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  ply.append(reinterpret_cast<const char*>(xyz), sizeof xyz);
+  const int32_t face[3] = {0, 1, 7};
+  ply += '\3';
+  ply.append(reinterpret_cast<const char*>(face), sizeof face);
+  expect_refused(dir.path() + "/index.ply", ply, "faces name vertices that do not exist");
+}
+
+TEST(MeshesHostile, NonManifoldFacesAreKeptWhole) {
+  // Three triangles on one edge: OpenMesh's importer adds the third with copies of its
+  // vertices; no face is lost.
+  TempDir dir;
+  write_text(dir.path() + "/fin.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n");
+  EXPECT_EQ(load_mesh(dir.path() + "/fin.obj").triangle_count(), 3u);
+}
+
+TEST(MeshesHostile, AMaterialLibraryIsNeverOpened) {
+  // OpenMesh opened an OBJ's mtllib itself: a FIFO there blocked the load for ever.
+  TempDir dir;
+  const std::string fifo = dir.path() + "/materials.mtl";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  write_text(dir.path() + "/m.obj", "mtllib materials.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n");
+  EXPECT_EQ(load_mesh(dir.path() + "/m.obj").triangle_count(), 1u);
+}
+
+TEST(MeshesHostile, SpecialFilesAreRefusedWithoutBlocking) {
+  TempDir dir;
+  const std::string fifo = dir.path() + "/pipe.obj";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_NE(expect_error(fifo, ARCUS_ERROR_IO).find("is a FIFO"), std::string::npos);
+  ::symlink("/dev/zero", (dir.path() + "/zero.ply").c_str());
+  EXPECT_NE(expect_error(dir.path() + "/zero.ply", ARCUS_ERROR_IO).find("character device"), std::string::npos);
 }
 
 }  // namespace
