@@ -264,19 +264,19 @@ TEST(ImageRead, ReadsFloatImagesExactlyTopRowFirst) {
     std::fclose(f);
   }
   uint32_t width = 0, height = 0;
-  ASSERT_EQ(arcus_image_read(path.c_str(), &width, &height, nullptr), ARCUS_SUCCESS) << arcus_last_error();
+  ASSERT_EQ(arcus_image_read(path.c_str(), &width, &height, nullptr, 0), ARCUS_SUCCESS) << arcus_last_error();
   ASSERT_EQ(width, w);
   ASSERT_EQ(height, h);
   std::vector<float> rgb(w * h * 3);
-  ASSERT_EQ(arcus_image_read(path.c_str(), nullptr, nullptr, rgb.data()), ARCUS_SUCCESS);
+  ASSERT_EQ(arcus_image_read(path.c_str(), nullptr, nullptr, rgb.data(), rgb.size()), ARCUS_SUCCESS);
   for (int i = 0; i < 9; ++i) {
     EXPECT_EQ(rgb[i], top[i]);
     EXPECT_EQ(rgb[9 + i], bottom[i]);
   }
   std::filesystem::remove(path);
-  EXPECT_EQ(arcus_image_read(path.c_str(), &width, &height, nullptr), ARCUS_ERROR_IO);
+  EXPECT_EQ(arcus_image_read(path.c_str(), &width, &height, nullptr, 0), ARCUS_ERROR_IO);
   EXPECT_NE(std::string(arcus_last_error()).find("arcus_test_image_read.pfm"), std::string::npos);
-  EXPECT_EQ(arcus_image_read(nullptr, &width, &height, nullptr), ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(arcus_image_read(nullptr, &width, &height, nullptr, 0), ARCUS_ERROR_INVALID_ARGUMENT);
 }
 
 TEST_F(RainbowSky, BadInputIsRefusedWithAReason) {

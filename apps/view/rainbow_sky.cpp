@@ -198,9 +198,10 @@ class RainbowSky final : public Preview {
         s.fail("sky_image_file", "must be a file name or null, got " + shown(*file));
       const std::string image_path = (fs::path(path).parent_path() / file->get<std::string>()).string();
       uint32_t w = 0, h = 0;
-      check(nullptr, arcus_image_read(image_path.c_str(), &w, &h, nullptr), "sky_image_file");
+      check(nullptr, arcus_image_read(image_path.c_str(), &w, &h, nullptr, 0), "sky_image_file");
       sky_image_.resize(size_t(w) * h * 3);
-      check(nullptr, arcus_image_read(image_path.c_str(), nullptr, nullptr, sky_image_.data()), "sky_image_file");
+      check(nullptr, arcus_image_read(image_path.c_str(), &w, &h, sky_image_.data(), sky_image_.size()),
+            "sky_image_file");
       home_.sky_image = sky_image_.data();
       home_.sky_image_width = w;
       home_.sky_image_height = h;

@@ -15,10 +15,16 @@ extern "C" {
  * ...) as linear RGB, 3 floats a pixel, top row first: integer files are taken as sRGB
  * encoded and decoded unless they declare themselves linear, float files are read as
  * they are; grey becomes grey, alpha is dropped.  Call with rgb NULL to learn the size
- * (from the file's header alone), then with width × height × 3 floats.  Errors
- * (arcus_last_error() says which): ARCUS_ERROR_IO (missing or unreadable file),
- * ARCUS_ERROR_INVALID_ARGUMENT. */
-ARCUS_API arcus_status arcus_image_read(const char* path, uint32_t* width, uint32_t* height, float* rgb);
+ * (from the file's header alone), then with rgb holding rgb_count floats (width ×
+ * height × 3); width and height, when given, receive the size of what was read.  An
+ * image that does not fit rgb_count (the file changed between the calls) writes
+ * nothing and is ARCUS_ERROR_INVALID_ARGUMENT naming rgb_count.
+ * Errors (arcus_last_error() says which): ARCUS_ERROR_IO (missing, unreadable, not a
+ * regular file, more than ARCUS_MAX_IMAGE_PIXELS pixels: 2^28 unless set),
+ * ARCUS_ERROR_INVALID_ARGUMENT (a NaN or infinite value, naming the pixel),
+ * ARCUS_ERROR_OUT_OF_MEMORY (more than the host has available). */
+ARCUS_API arcus_status arcus_image_read(const char* path, uint32_t* width, uint32_t* height, float* rgb,
+                                        size_t rgb_count);
 
 #ifdef __cplusplus
 }

@@ -8,7 +8,7 @@
 using namespace arcus;
 using namespace arcus::api;
 
-arcus_status arcus_image_read(const char* path, uint32_t* width, uint32_t* height, float* rgb) {
+arcus_status arcus_image_read(const char* path, uint32_t* width, uint32_t* height, float* rgb, size_t rgb_count) {
   return without_context([&] {
     require_pointer(path, "path");
     if (!rgb) {  // the size query reads the header only, not the pixels twice
@@ -18,6 +18,10 @@ arcus_status arcus_image_read(const char* path, uint32_t* width, uint32_t* heigh
       return;
     }
     const image::Image im = image::read_image(path);
+    // The file may have changed since the caller learnt its size: never write past rgb.
+    require(im.pixels.size() <= rgb_count, "rgb_count = " + std::to_string(rgb_count) + ": " + path + " now holds " +
+                                               std::to_string(im.width) + " x " + std::to_string(im.height) +
+                                               " pixels, which need " + std::to_string(im.pixels.size()) + " floats");
     if (width) *width = static_cast<uint32_t>(im.width);
     if (height) *height = static_cast<uint32_t>(im.height);
     std::copy(im.pixels.begin(), im.pixels.end(), rgb);

@@ -11,7 +11,9 @@
 #include <set>
 
 #include "core/error.h"
+#include "core/files.h"
 #include "core/format.h"
+#include "core/limits.h"
 #include "spectral/srgb.h"
 
 namespace arcus::image {
@@ -62,8 +64,11 @@ struct Read {
   bool encoded = false;  // integer pixels not declared linear: sRGB-encoded
 };
 
-// The file opened, its header read and checked (a flat image with pixels), no pixels.
+// The file opened, its header read and checked (a flat image with pixels, within the
+// pixel bound), no pixels.  Only a regular file is handed to OpenImageIO: a FIFO would
+// block its open for ever and /dev/zero keep its format probe spinning.
 std::unique_ptr<OIIO::ImageInput> open_file(const std::string& path) {
+  files::require_regular(path);
   // Colour as stored: OIIO would otherwise multiply it by alpha, which for an encoded
   // file comes before decoding and darkens translucent texels twice.
   OIIO::ImageSpec config;
@@ -75,8 +80,18 @@ std::unique_ptr<OIIO::ImageInput> open_file(const std::string& path) {
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
     fail(ARCUS_ERROR_IO, path + ": image is " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
                              " pixels of " + std::to_string(spec.nchannels) + " channels");
+  const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);
+  if (pixels > limits::image_pixels())
+    fail(ARCUS_ERROR_IO, path + ": image is " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+                             " pixels, more than the " + std::to_string(limits::image_pixels()) +
+                             " allowed (ARCUS_MAX_IMAGE_PIXELS raises the bound)");
   return in;
 }
+
+// Rows decoded at a time: memory grows with the rows a file actually holds, so a small
+// file whose header claims a huge image fails at its first missing row, having used
+// little (the whole buffer used to be zero-filled before decoding began).
+constexpr int kRowsAtATime = 64;
 
 Read read_file(const std::string& path) {
   const auto in = open_file(path);
@@ -87,15 +102,19 @@ Read read_file(const std::string& path) {
   image.height = spec.height;
   image.channels = spec.channelnames;
   image.channels.resize(spec.nchannels);
-  try {
-    image.pixels.resize(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
-  } catch (const std::bad_alloc&) {
-    fail(ARCUS_ERROR_OUT_OF_MEMORY, path + ": no memory for " + std::to_string(spec.width) + " x " +
-                                        std::to_string(spec.height) + " pixels of " +
-                                        std::to_string(spec.nchannels) + " channels");
+  const size_t row = static_cast<size_t>(spec.width) * spec.nchannels;
+  // The pixels, and the RGB copy read_image makes of them.
+  limits::require_host_memory(double(row) * spec.height * sizeof(float) + double(spec.width) * spec.height * 12.0,
+                              path + ": a " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+                                  " image of " + std::to_string(spec.nchannels) + " channels");
+  image.pixels.reserve(row * spec.height);  // address space only, until rows arrive
+  for (int y = 0; y < spec.height; y += kRowsAtATime) {
+    const int rows = std::min(kRowsAtATime, spec.height - y);
+    image.pixels.resize(row * (y + rows));
+    if (!in->read_scanlines(0, 0, spec.y + y, spec.y + y + rows, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT,
+                            image.pixels.data() + row * y))
+      fail_io(path, "cannot read", in->geterror());
   }
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
-    fail_io(path, "cannot read", in->geterror());
   read.encoded = !spec.format.is_floating_point() &&
                  !OIIO::Strutil::iequals(spec.get_string_attribute("oiio:ColorSpace"), "Linear");
   return read;
@@ -164,6 +183,15 @@ Image read_image(const std::string& path) {
       const float v = raw.pixels[p * n + source[c]];
       rgb.pixels[p * 3 + c] = read.encoded ? static_cast<float>(spectral::srgb_decode(v)) : v;
     }
+  // A colour or radiance must be a number: a NaN or infinite texel would make NaN or
+  // infinite pixels of every image it is seen in.  One pass, a message only on failure.
+  const auto bad = std::find_if(rgb.pixels.begin(), rgb.pixels.end(), [](float v) { return !std::isfinite(v); });
+  if (bad != rgb.pixels.end()) {
+    const size_t at = static_cast<size_t>(bad - rgb.pixels.begin());
+    fail(ARCUS_ERROR_INVALID_ARGUMENT, path + ": pixel (" + std::to_string(at / 3 % rgb.width) + ", " +
+                                           std::to_string(at / 3 / rgb.width) + ") " + "RGB"[at % 3] + " = " +
+                                           number(*bad) + " is not finite");
+  }
   return rgb;
 }
 

@@ -34,7 +34,9 @@ void write_png(const std::string& path, const Image& linear_rgb, double exposure
 // the inverse transfer function unless they declare themselves linear; float files
 // (EXR, HDR) are read as they are.  Colour comes from the channels named R, G, B, else
 // the first three; one or two channels (grey, grey + alpha) give grey.  Alpha is
-// dropped, and colour is not multiplied by it.
+// dropped, and colour is not multiplied by it.  A file that is not a regular file is
+// ARCUS_ERROR_IO, as is one of more than ARCUS_MAX_IMAGE_PIXELS (core/limits.h); a
+// non-finite value is ARCUS_ERROR_INVALID_ARGUMENT naming the pixel.
 Image read_image(const std::string& path);
 
 // The width and height read_image would return, from the file's header alone.

@@ -2,10 +2,15 @@
 // exactly and by name, PNG is 8-bit sRGB and decodes back to the quantised linear value,
 // read_image gives linear RGB whatever the file, errors name the file and carry OIIO's
 // reason, and bilinear sampling is exact at texel centres, wrapping or clamping at edges.
+// Hostile input: special files, headers claiming huge images, NaN and infinite texels.
 #include <OpenImageIO/imageio.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -291,6 +296,105 @@ TEST(Bilinear, RejectsNonFiniteCoordinatesAndBadImages) {
   Image grey = make(2, 2, {"Y"}, [](int, int, int) { return 1.0f; });
   EXPECT_EQ(error_of([&] { sample_bilinear(grey, 0.5, 0.5, false); }).status(), ARCUS_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(error_of([&] { sample_bilinear(Image(), 0.5, 0.5, false); }).status(), ARCUS_ERROR_INVALID_ARGUMENT);
+}
+
+// ---- hostile input ---------------------------------------------------------------------
+
+// A PFM of one colour per pixel, rows bottom-up as the format stores them.
+void write_pfm(const std::string& path, int w, int h, const std::function<float(int, int, int)>& value) {
+  std::ofstream out(path, std::ios::binary);
+  out << "PF\n" << w << " " << h << "\n-1.0\n";
+  for (int y = h - 1; y >= 0; --y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const float v = value(x, y, c);
+        out.write(reinterpret_cast<const char*>(&v), sizeof v);
+      }
+}
+
+// The CRC-32 of PNG chunks (ISO 3309), for hand-made PNG files.
+uint32_t crc32(const std::string& bytes) {
+  uint32_t c = 0xffffffffu;
+  for (unsigned char b : bytes) {
+    c ^= b;
+    for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
+  }
+  return ~c;
+}
+
+std::string be32(uint32_t v) {
+  return {char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
+}
+
+std::string chunk(const std::string& type, const std::string& data) {
+  return be32(uint32_t(data.size())) + type + data + be32(crc32(type + data));
+}
+
+// A PNG whose header claims width x height RGB pixels, holding a few bytes of data.
+std::string lying_png(uint32_t width, uint32_t height) {
+  const std::string ihdr = be32(width) + be32(height) + std::string("\x08\x02\x00\x00\x00", 5);
+  const std::string idat("\x78\x9c\x63\x00\x00\x00\x01\x00\x01", 9);  // zlib of one zero byte
+  return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", ihdr) + chunk("IDAT", idat) + chunk("IEND", "");
+}
+
+long peak_rss_mib() {
+  struct rusage u {};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss / 1024;
+}
+
+TEST(ImageIoHostile, SpecialFilesAreRefusedWithoutBlocking) {
+  // A FIFO blocked OpenImageIO's open for ever; /dev/zero kept its format probe spinning.
+  TempDir dir;
+  const std::string fifo = dir.path() + "/sky.exr";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const auto start = std::chrono::steady_clock::now();
+  arcus::Error e = error_of([&] { read_image(fifo); });
+  EXPECT_EQ(e.status(), ARCUS_ERROR_IO);
+  EXPECT_TRUE(contains(e.what(), fifo + ": is a FIFO, not a regular file")) << e.what();
+  const std::string zero = dir.path() + "/zero.png";
+  ASSERT_EQ(::symlink("/dev/zero", zero.c_str()), 0);
+  e = error_of([&] { read_image(zero); });
+  EXPECT_TRUE(contains(e.what(), "character device")) << e.what();
+  e = error_of([&] { read_image(dir.path()); });
+  EXPECT_TRUE(contains(e.what(), "is a directory")) << e.what();
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+}
+
+TEST(ImageIoHostile, AHeaderClaimingAHugeImageCostsOnlyWhatTheFileHolds) {
+  // 149 bytes claiming 12000 x 12000 took 1.8 GB: the pixels were zero-filled before
+  // decoding began.  Now rows are allocated as they are decoded.
+  TempDir dir;
+  const std::string path = dir.path() + "/liar.png";
+  std::ofstream(path, std::ios::binary) << lying_png(12000, 12000);
+  const long before = peak_rss_mib();
+  const arcus::Error e = error_of([&] { read_image(path); });
+  EXPECT_EQ(e.status(), ARCUS_ERROR_IO) << e.what();
+  EXPECT_TRUE(contains(e.what(), path)) << e.what();
+  // The whole image would be 1.6 GiB of float pixels; a few rows are a few MiB.
+  EXPECT_LT(peak_rss_mib() - before, 200) << "peak RSS before " << before << " MiB, after " << peak_rss_mib();
+  // Beyond the pixel bound (2^28) it is refused from the header alone.
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << lying_png(30000, 30000);
+  const arcus::Error big = error_of([&] { read_image(path); });
+  EXPECT_TRUE(contains(big.what(), "30000 x 30000 pixels, more than the 268435456 allowed (ARCUS_MAX_IMAGE_PIXELS"))
+      << big.what();
+  ScopedEnv raised("ARCUS_MAX_IMAGE_PIXELS", "1G");
+  EXPECT_FALSE(contains(error_of([&] { read_image(path); }).what(), "allowed")) << "the bound is raised";
+}
+
+TEST(ImageIoHostile, NanAndInfiniteTexelsAreRefusedNamingThePixel) {
+  TempDir dir;
+  const std::string path = dir.path() + "/texture.pfm";
+  for (const float bad : {NAN, INFINITY, -INFINITY}) {
+    write_pfm(path, 4, 3, [&](int x, int y, int c) { return x == 2 && y == 1 && c == 1 ? bad : 0.5f; });
+    const arcus::Error e = error_of([&] { read_image(path); });
+    EXPECT_EQ(e.status(), ARCUS_ERROR_INVALID_ARGUMENT);
+    EXPECT_TRUE(contains(e.what(), path + ": pixel (2, 1) G = ")) << e.what();
+    EXPECT_TRUE(contains(e.what(), "is not finite")) << e.what();
+  }
+  // The largest finite float is a colour like any other.
+  write_pfm(path, 2, 2, [](int, int, int) { return 3.0e38f; });
+  EXPECT_EQ(read_image(path).pixels[0], 3.0e38f);
 }
 
 }  // namespace

@@ -454,7 +454,8 @@ _PROTOTYPES = {
         _status, [_handle, POINTER(c_uint32), POINTER(c_uint32), POINTER(ctypes.c_float), POINTER(ctypes.c_float),
                   POINTER(ctypes.c_float)]),
     "arcus_job_write_rainbow_image": (_status, [_handle, c_char_p, c_char_p]),
-    "arcus_image_read": (_status, [c_char_p, POINTER(c_uint32), POINTER(c_uint32), POINTER(ctypes.c_float)]),
+    "arcus_image_read": (_status, [c_char_p, POINTER(c_uint32), POINTER(c_uint32), POINTER(ctypes.c_float),
+                                   ctypes.c_size_t]),
     "arcus_mie": (
         _status,
         [c_double, c_double, c_double, c_double, c_size_t, _dvec, _dvec, _dvec, _dvec, _dvec,

@@ -13,10 +13,14 @@ def read(path):
     """The first image of ``path`` (EXR, HDR, PNG, JPEG, TIFF, PFM, ...) as linear RGB, an
     (height, width, 3) float32 array, top row first: integer files are decoded from sRGB
     unless they say they are linear, float files are taken as they are.  A missing or
-    unreadable file raises :class:`arcus.Error` (status ``ARCUS_ERROR_IO``)."""
+    unreadable file raises :class:`arcus.Error` (status ``ARCUS_ERROR_IO``); so do a file
+    that is not a regular file and one of more than ``ARCUS_MAX_IMAGE_PIXELS`` pixels
+    (2^28 unless set).  A NaN or infinite value raises :class:`arcus.ArgumentError`."""
     encoded = to_path(path, "path")
     width, height = c_uint32(), c_uint32()
-    _lib.check(lib.arcus_image_read(encoded, byref(width), byref(height), None))
-    rgb = np.empty((height.value, width.value, 3), np.float32)
-    _lib.check(lib.arcus_image_read(encoded, None, None, _lib.ptr(rgb, c_float)))
-    return rgb
+    _lib.check(lib.arcus_image_read(encoded, byref(width), byref(height), None, 0))
+    rgb = np.empty(height.value * width.value * 3, np.float32)
+    # The file may change between the calls: the library writes only what fits, and says
+    # what size it read.
+    _lib.check(lib.arcus_image_read(encoded, byref(width), byref(height), _lib.ptr(rgb, c_float), rgb.size))
+    return rgb[: height.value * width.value * 3].reshape(height.value, width.value, 3)
