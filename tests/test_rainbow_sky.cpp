@@ -6,6 +6,7 @@
 // wrong).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -152,6 +153,93 @@ TEST_F(RainbowSky, MarchFollowsTheSunsExitFaceAlongTheRay) {
   integral *= 1000.0 / n;
   EXPECT_NEAR(y[0], beta * integral, 1e-6 * beta * integral);
   EXPECT_NEAR(theta, 150.0, 1e-4);  // cos θ = d·sun = −cos 30°
+}
+
+// The kernel's march (the midpoint rule over the ray's part in the box) summed here term
+// by term, each term its own exp, in double: independent of the kernel's shortcut of a
+// geometric sequence while the sun leaves through one face.  Sun of 1, β = 1, no sky:
+// the Y this returns is what a flat-spectrum render gives.
+double march_sum(const double cam[3], const double d[3], const double sun[3], const double lo[3], const double hi[3],
+                 double sigma, int steps) {
+  double t0 = 0, t1 = INFINITY;
+  for (int a = 0; a < 3; ++a) {
+    const double ta = (lo[a] - cam[a]) / d[a], tb = (hi[a] - cam[a]) / d[a];
+    t0 = std::max(t0, std::min(ta, tb));
+    t1 = std::min(t1, std::max(ta, tb));
+  }
+  if (d[1] < 0 && cam[1] > 0) t1 = std::min(t1, -cam[1] / d[1]);
+  if (t1 <= t0) return 0;
+  const double dt = (t1 - t0) / steps;
+  double sum = 0;
+  for (int k = 0; k < steps; ++k) {
+    const double t = t0 + (k + 0.5) * dt;
+    double path = INFINITY;
+    for (int a = 0; a < 3; ++a)
+      if (sun[a] != 0) path = std::min(path, ((sun[a] > 0 ? hi[a] : lo[a]) - cam[a] - t * d[a]) / sun[a]);
+    sum += std::exp(-sigma * (t - t0 + std::max(path, 0.0)));
+  }
+  return sum * dt;
+}
+
+std::array<double, 3> direction(double elevation_deg, double azimuth_deg) {
+  const double e = elevation_deg * M_PI / 180, a = azimuth_deg * M_PI / 180;
+  return {std::cos(e) * std::sin(a), std::sin(e), std::cos(e) * std::cos(a)};
+}
+
+// Optically thick rain.  Looking into it where the sun's path out of the box shortens
+// faster than the view ray lengthens, the kernel's sequence of terms multiplied a term
+// that had underflowed to 0 by a ratio that had overflowed: NaN pixels reported as
+// success (σ_e ≳ 15/m, a low sun behind the camera).  And a term underflowed to 0 stayed
+// 0 under a finite ratio above 1, though later terms are not small: a camera inside a
+// layer of rain looking up, a low sun ahead (σ_e = 0.2/m), rendered black.  Reference:
+// march_sum.  The image is float32: 1e-5 relative, and values below 1e-30 as 0.
+TEST_F(RainbowSky, ThickRainGivesTheMarchsSumNotNanNorZero) {
+  struct Case {
+    double sigma, sun_elevation, sun_azimuth, look_elevation, camera_y, lo_z, hi_y, hi_z;
+    int steps;
+  };
+  const Case cases[] = {
+      {15, 0.5, 180, 10, 1.7, 100, 100, 1100, 32},    // was NaN
+      {20, 10, 180, 60, 1.7, 100, 100, 1100, 32},     // was NaN
+      {5, 5, 180, 60, 1.7, 100, 100, 1100, 32},       // was NaN
+      {0.2, 0.5, 0, 30, 50, -1e4, 100, 1e4, 32},      // was 0, is ~1e-16
+      {0.2, 0.5, 0, 60, 50, -1e4, 100, 1e4, 128},     // was 0, is ~5e-8
+      {0.2, 0.5, 0, 85, 50, -1e4, 100, 1e4, 128},     // was 0, is ~2e-7
+  };
+  Table t(4, 1.0, 0.0);
+  for (const Case& c : cases) {
+    t.ext.assign(4, c.sigma);
+    t.t.extinction = t.ext.data();
+    Sky s(4, 0.0);
+    s.s.sun_elevation_deg = c.sun_elevation;
+    s.s.sun_azimuth_deg = c.sun_azimuth;
+    s.s.march_steps = static_cast<uint32_t>(c.steps);
+    s.s.camera_position[1] = c.camera_y;
+    s.s.rain_min[2] = c.lo_z;
+    s.s.rain_max[1] = c.hi_y;
+    s.s.rain_max[2] = c.hi_z;
+    const auto f = direction(c.look_elevation, 0);
+    std::copy(f.begin(), f.end(), s.s.camera_forward);
+    const auto y = render_y(ctx(), t, s);
+    const double cam[3] = {0, c.camera_y, 0};
+    const auto sun = direction(c.sun_elevation, c.sun_azimuth);
+    const double expected = march_sum(cam, f.data(), sun.data(), s.s.rain_min, s.s.rain_max, c.sigma, c.steps);
+    ASSERT_EQ(y.size(), 1u);
+    EXPECT_TRUE(std::isfinite(y[0])) << "sigma " << c.sigma;
+    EXPECT_NEAR(y[0], expected, 1e-5 * expected + 1e-30)
+        << "sigma " << c.sigma << ", looking up " << c.look_elevation << "°: expected " << expected;
+  }
+  // The probe's picture: a whole image of thick rain renders, every pixel finite.
+  t.ext.assign(4, 15.0);
+  t.t.extinction = t.ext.data();
+  Sky s(4, 0.2);
+  s.s.width = 16;
+  s.s.height = 12;
+  s.s.fov_deg = 90;
+  s.s.sun_elevation_deg = 2;
+  const auto f = direction(30, 0);
+  std::copy(f.begin(), f.end(), s.s.camera_forward);
+  for (float v : render_y(ctx(), t, s)) EXPECT_TRUE(std::isfinite(v));
 }
 
 // β only for φ in [180°, 360°): light leaving downward across the light (φ = 270° is

@@ -140,7 +140,12 @@ __kernel void arcus_rainbow_sky(__global const REAL* beta, __global const REAL* 
               nearest = a;
             }
           }
-          term = nearest == face ? term * ratio[nearest] : exp(-sigma * (t - t0 + fmax(path, RC(0.0))));
+          /* The product only while it is exact: in thick rain a ratio overflows (the sun's
+           * path shortening faster than the view ray lengthens, exp(+σ·Δt·…)) where the
+           * term has underflowed, and 0·∞ made NaN pixels; a term underflowed to 0 would
+           * also stay 0 under a finite ratio > 1.  Elsewhere the exp is taken afresh. */
+          const int product = nearest == face && term > RC(1e-30) && ratio[nearest] < RC(1e30);
+          term = product ? term * ratio[nearest] : exp(-sigma * (t - t0 + fmax(path, RC(0.0))));
           face = nearest;
           march += term;
         }

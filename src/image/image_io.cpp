@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <new>
 #include <set>
@@ -193,6 +194,24 @@ Image read_image(const std::string& path) {
                                            number(*bad) + " is not finite");
   }
   return rgb;
+}
+
+void require_finite_pixels(const std::vector<float>& pixels, int width, const char* channel_names,
+                           const std::string& what) {
+  const size_t channels = std::strlen(channel_names);
+  size_t bad = 0, first = 0;
+  for (size_t i = 0; i < pixels.size(); i += channels)
+    for (size_t c = 0; c < channels; ++c)
+      if (!std::isfinite(pixels[i + c])) {
+        if (bad++ == 0) first = i + c;
+        break;
+      }
+  if (!bad) return;
+  const size_t pixel = first / channels;
+  fail(ARCUS_ERROR_NOT_FINITE, what + ": " + std::to_string(bad) + " of " + std::to_string(pixels.size() / channels) +
+                                   " pixels are not finite; the first is (" + std::to_string(pixel % width) + ", " +
+                                   std::to_string(pixel / width) + "), whose " + channel_names[first % channels] +
+                                   " is " + number(pixels[first]));
 }
 
 std::array<float, 3> sample_bilinear(const Image& image, double u, double v, bool wrap_u) {

@@ -46,6 +46,13 @@ std::array<int, 2> read_size(const std::string& path);
 // conversion: the counterpart of write_exr.
 Image read_channels(const std::string& path);
 
+// Every image job's last check: ARCUS_ERROR_NOT_FINITE unless every value of `pixels`
+// (width x ... pixels of `channels` values, named by `channel_names`, e.g. "RGB") is
+// finite: "<what>: 32 of 192 pixels are not finite; the first is (3, 5), whose G is nan".
+// A NaN or infinite pixel is a numerical failure, never an image.
+void require_finite_pixels(const std::vector<float>& pixels, int width, const char* channel_names,
+                           const std::string& what);
+
 // Bilinear sample of the first three channels at (u, v) in [0, 1]²: u = 0 is the left
 // edge, v = 0 the top edge, texel (i, j) is centred at ((i + ½) / width, (j + ½) / height),
 // so texel centres are returned exactly.  Across u the image wraps around when `wrap_u`

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/features.h"
 #include "core/slices.h"
+#include "image/image_io.h"
 #include "photon/photon_map.h"
 #include "render/scene_desc.h"  // the pinhole camera's checks, shared
 #include "spectral/cie.h"
@@ -364,6 +365,7 @@ std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const WaterTables& w, co
     const auto rgb = spectral::xyz_to_linear_srgb(xyz);
     for (int c = 0; c < 3; ++c) job->rgb[3 * p + c] = static_cast<float>(rgb[c]);
   }
+  image::require_finite_pixels(job->rgb, static_cast<int>(camera.width), "RGB", "the ocean render");
   job->render_stats.total_seconds = seconds_since(t0);
   job->stats.total_seconds = job->render_stats.total_seconds;
   return job;

@@ -319,6 +319,7 @@ std::unique_ptr<SkyJob> render_sky(arcus_context_t* ctx, const arcus_rainbow_tab
   job->theta.resize(pixels);
   xyz_dev.read(ctx, 0, job->xyz.size() * sizeof(float), job->xyz.data());
   theta_dev.read(ctx, 0, job->theta.size() * sizeof(float), job->theta.data());
+  image::require_finite_pixels(job->xyz, s.width, "XYZ", "arcus_rainbow_render");
   job->rgb.resize(pixels * 3);
   std::vector<float> luminance(pixels);
   for (size_t p = 0; p < pixels; ++p) {

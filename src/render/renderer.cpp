@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "image/image_io.h"
 #include "spectral/cie.h"
 #include "spectral/srgb.h"
 #include "render/photons.h"
@@ -747,6 +748,7 @@ std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_call
   }
   st.shade_seconds = shade_seconds - st.photon_seconds;  // shade() shoots the photons too
 
+  image::require_finite_pixels(job->rgb, static_cast<int>(c.width), "RGB", "the render");
   job->width = c.width;
   job->height = c.height;
   job->exposure = r->scene->desc.exposure;
