@@ -122,6 +122,26 @@ TEST(OceanApi, BadInputNamesTheArgumentAndLosesNothing) {
   arcus_water_release(w);
 }
 
+TEST(OceanApi, ALightTooFarForThePhotonMapIsRefusedNotAnAbort) {
+  // A point lamp at x = -3e38 m in an unbounded ocean: its photons' positions reached
+  // Embree's builder, whose binning overflowed single precision and aborted the process.
+  Ctx c;
+  arcus_water_t* w = thesis_water(c.ctx);
+  Lamp lamp;
+  lamp.light.position[0] = -3e38;
+  lamp.params.photons = 1000;
+  arcus_job_t* job = nullptr;
+  EXPECT_EQ(arcus_ocean_trace(c.ctx, w, &lamp.setup, &lamp.params, &job), ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(job, nullptr);
+  const std::string message = arcus_context_last_error(c.ctx);
+  EXPECT_NE(message.find("lights[0].position"), std::string::npos) << message;
+  EXPECT_NE(message.find("1e+18"), std::string::npos) << message;
+  lamp.light.position[0] = -1e17;  // within the bound: traced (it is far, and dark, but fine)
+  EXPECT_EQ(arcus_ocean_trace(c.ctx, w, &lamp.setup, &lamp.params, &job), ARCUS_SUCCESS) << arcus_context_last_error(c.ctx);
+  arcus_job_release(job);
+  arcus_water_release(w);
+}
+
 TEST(OceanApi, ATraceBalancesItsEnergyAndReportsItsFeatures) {
   Ctx c;
   arcus_water_t* w = thesis_water(c.ctx);

@@ -497,6 +497,42 @@ TEST_F(Render, AMeshWithoutFacesIsRefused) {
   EXPECT_NE(message.find(obj), std::string::npos) << message;
 }
 
+TEST_F(Render, GeometryTooFarForTheBvhIsRefusedNamingTheMesh) {
+  // A mesh moved 3e38 m or scaled by 1e300: Embree's binning overflowed single precision
+  // and an assertion aborted the process.
+  const std::string camera = R"({"position": [0, 0, 0], "look_at": [1, 0, 0], "vfov_deg": 40, "width": 4, "height": 4})";
+  for (const char* placement : {R"("translate": [3e38, 0, 0])", R"("scale": 1e300)"}) {
+    const std::string text = scene_text(R"({"type": "constant", "n": 1.0})", camera,
+                                        R"([{"type": "mesh", "file": ")" + mesh("icosphere.obj") +
+                                            R"(", "material": "m", )" + placement + "}]");
+    const auto [status, message] = load_error(temp_file("far", ".json", text));
+    EXPECT_EQ(status, ARCUS_ERROR_INVALID_ARGUMENT) << placement;
+    EXPECT_NE(message.find("icosphere.obj: vertex"), std::string::npos) << message;
+    EXPECT_NE(message.find("1e+18 m from the origin"), std::string::npos) << message;
+  }
+}
+
+TEST_F(Render, AnImageThatComesOutInfiniteIsAnErrorNotAPicture) {
+  // A sky of 1e308 is a finite number in the scene, but radiance sums over it overflow:
+  // the job reported success with an infinite image.
+  const std::string text =
+      R"({"name": "t", "medium": {"type": "constant", "n": 1.0},
+          "integrator": {"method": "dp45", "rtol": 1e-9, "atol": 1e-6, "length": 100},
+          "camera": {"position": [0, 0, 0], "look_at": [1, 0, 0], "vfov_deg": 40, "width": 4, "height": 4},
+          "materials": {"m": {"diffuse": [0.5, 0.5, 0.5]}}, "objects": [],
+          "sky": {"type": "constant", "color": [1e308, 1e308, 1e308]}})";
+  arcus_scene_t* scene = load(text, "infinite");
+  ASSERT_NE(scene, nullptr);
+  arcus_renderer_t* r = nullptr;
+  ASSERT_EQ(arcus_renderer_create(scene, &r), ARCUS_SUCCESS) << last_error();
+  arcus_job_t* job = nullptr;
+  EXPECT_EQ(arcus_render_frame(r, nullptr, nullptr, &job), ARCUS_ERROR_NOT_FINITE);
+  EXPECT_EQ(job, nullptr);
+  EXPECT_NE(last_error().find("pixels are not finite"), std::string::npos) << last_error();
+  arcus_renderer_release(r);
+  arcus_scene_release(scene);
+}
+
 TEST_F(Render, MalformedScenesNameTheFileAndTheKey) {
   const std::string cam =
       R"({"position": [0, 0, 0], "look_at": [1, 0, 0], "vfov_deg": 40, "width": 0, "height": 4})";

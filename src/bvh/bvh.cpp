@@ -8,6 +8,7 @@
 
 #include "bvh/embree_scene.h"
 #include "core/error.h"
+#include "core/format.h"
 
 namespace arcus::bvh {
 namespace {
@@ -95,6 +96,12 @@ struct Flattener {
 
 }  // namespace
 
+bool representable(const double p[3]) {
+  for (int k = 0; k < 3; ++k)
+    if (!(std::fabs(p[k]) <= kMaxCoordinate)) return false;
+  return true;
+}
+
 Flat build(const std::vector<Bounds>& prims, int max_leaf) {
   require(max_leaf >= 1 && max_leaf <= RTC_BUILD_MAX_PRIMITIVES_PER_LEAF,
           "bvh: max_leaf must be 1 to " + std::to_string(RTC_BUILD_MAX_PRIMITIVES_PER_LEAF));
@@ -111,6 +118,12 @@ Flat build(const std::vector<Bounds>& prims, int max_leaf) {
     for (int k = 0; k < 3; ++k)
       require(std::isfinite(p.lo[k]) && std::isfinite(p.hi[k]) && p.lo[k] <= p.hi[k],
               "bvh: primitive " + std::to_string(i) + " has a non-finite or inverted box");
+    if (!representable(p.lo) || !representable(p.hi))
+      fail(ARCUS_ERROR_INVALID_ARGUMENT, "bvh: primitive " + std::to_string(i) + " reaches " +
+                                             number(std::max({std::fabs(p.lo[0]), std::fabs(p.lo[1]), std::fabs(p.lo[2]),
+                                                              std::fabs(p.hi[0]), std::fabs(p.hi[1]), std::fabs(p.hi[2])})) +
+                                             " m from the origin, beyond the " + number(kMaxCoordinate) +
+                                             " m the BVH builder can represent");
     in[i] = RTCBuildPrimitive{round_down(p.lo[0]), round_down(p.lo[1]), round_down(p.lo[2]), 0,
                               round_up(p.hi[0]),   round_up(p.hi[1]),   round_up(p.hi[2]),   static_cast<unsigned>(i)};
   }
@@ -168,6 +181,13 @@ TriangleBvh build_triangles(const std::vector<const geometry::Mesh*>& meshes, in
     const geometry::Mesh& m = *meshes[g];
     out.mesh_first.push_back(static_cast<uint32_t>(out.geometry.size()));
     const size_t nv = m.vertex_count();
+    for (size_t v = 0; v < nv; ++v)
+      if (!representable(&m.positions[3 * v]))
+        fail(ARCUS_ERROR_INVALID_ARGUMENT,
+             (m.source.empty() ? "mesh " + std::to_string(g) : m.source) + ": vertex " + std::to_string(v) + " at (" +
+                 number(m.positions[3 * v]) + ", " + number(m.positions[3 * v + 1]) + ", " +
+                 number(m.positions[3 * v + 2]) + ") lies beyond the " + number(kMaxCoordinate) +
+                 " m from the origin that the BVH can represent; move or scale the mesh nearer the origin");
     for (size_t t = 0; t < m.triangle_count(); ++t) {
       double v[9];
       for (int c = 0; c < 3; ++c) {

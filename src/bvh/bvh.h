@@ -16,6 +16,15 @@ struct Bounds {
   double lo[3], hi[3];
 };
 
+// How far from the origin geometry may lie: 1e18 m (about 100 light years).  Embree's
+// builder bins boxes in single precision and weighs splits by their surface areas, which
+// overflow beyond ~1e19 m (an assertion in its binning killed the process for a mesh at
+// 3e38 m); every build refuses primitives beyond this, with a message.
+constexpr double kMaxCoordinate = 1e18;
+
+// Whether every coordinate of the point is finite and within ±kMaxCoordinate.
+bool representable(const double p[3]);
+
 // A flattened tree: nodes[0] is the root, nodes in depth-first order with the two
 // children of an inner node adjacent; leaf slots [first, first + count) index `order`.
 // No primitives: one node with count 0 and first -1, which traversals never enter.
@@ -25,7 +34,7 @@ struct Flat {
   int depth;                    // levels: 1 for a root that is a leaf
 };
 
-// SAH BVH over `prims` (finite, lo <= hi; zero-size boxes allowed) with at most
+// SAH BVH over `prims` (finite, within ±kMaxCoordinate, lo <= hi; zero-size boxes allowed) with at most
 // `max_leaf` (1..32) primitives per leaf.  Node boxes are the exact double union of
 // their primitives' boxes.  A tree deeper than ARCUS_BVH_MAX_DEPTH levels (which the
 // kernels' fixed stacks could not traverse) is ARCUS_ERROR_INVALID_ARGUMENT.

@@ -5,6 +5,7 @@
 #include <numeric>
 #include <string>
 
+#include "bvh/bvh.h"
 #include "core/buffer.h"
 #include "core/context.h"
 #include "core/error.h"
@@ -155,6 +156,10 @@ void check_light(const Light& L, size_t index) {
   const std::string w = "lights[" + std::to_string(index) + "]";
   require(L.kind >= Light::point && L.kind <= Light::sky, w + ".kind: unknown light kind " + std::to_string(L.kind));
   require(finite3(L.position), w + ".position: must be finite");
+  // The photons it sends are gathered under a BVH (bvh.h): their positions must be
+  // representable, and a light's are where they start.
+  require(bvh::representable(L.position), w + ".position: lies beyond the " + number(bvh::kMaxCoordinate) +
+                                              " m from the origin that the photon map can represent");
   require(finite3(L.direction), w + ".direction: must be finite");
   require(std::hypot(L.direction[0], L.direction[1], L.direction[2]) > 0 || L.kind == Light::point ||
               L.kind == Light::sky,

@@ -148,6 +148,8 @@ PhotonMap::PhotonMap(arcus_context_t* ctx, const Photons& in) : runtime_(ctx->ru
     const double* p = &in.positions[3 * i];
     const std::string which = "photon map: photon " + std::to_string(i);
     require(finite3(p), which + ": position " + triple(p) + " is not finite");
+    require(bvh::representable(p), which + ": position " + triple(p) + " lies beyond the " +
+                                       number(bvh::kMaxCoordinate) + " m from the origin that the BVH can represent");
     require(normalise(&in.directions[3 * i], &dirs[3 * i]),
             which + ": direction " + triple(&in.directions[3 * i]) + " is zero or not finite");
     for (int c = 0; c < ch; ++c) {

@@ -25,6 +25,7 @@
 namespace {
 
 using arcus::bvh::AllHits;
+using arcus::bvh::Bounds;
 using arcus::bvh::DeviceBvh;
 using arcus::bvh::Hit;
 using arcus::bvh::Segment;
@@ -230,6 +231,27 @@ TEST(Bvh, GenericBuilderTakesPointsAndRefusesBadInput) {
   EXPECT_THROW(arcus::bvh::build(points), arcus::Error);
   points[10].lo[1] = 2, points[10].hi[1] = 1;  // inverted
   EXPECT_THROW(arcus::bvh::build(points), arcus::Error);
+}
+
+TEST(Bvh, PrimitivesBeyondWhatEmbreeCanBinAreRefusedNotAnAbort) {
+  // Embree bins in single precision: a box at 3e38 m failed an assertion in its binning
+  // and killed the process.  Beyond kMaxCoordinate the build refuses, with a message.
+  for (const double far : {3e38, -1e30, 2e18}) {
+    std::vector<Bounds> boxes(64);
+    for (size_t i = 0; i < boxes.size(); ++i)
+      for (int k = 0; k < 3; ++k) boxes[i].lo[k] = boxes[i].hi[k] = double(i) + k;
+    boxes[17].lo[0] = std::min(far, boxes[17].lo[0]);
+    boxes[17].hi[0] = std::max(far, boxes[17].hi[0]);
+    const arcus_unit::Failure f = arcus_unit::failure_of([&] { arcus::bvh::build(boxes); });
+    EXPECT_EQ(f.status, ARCUS_ERROR_INVALID_ARGUMENT) << far;
+    EXPECT_NE(f.message.find("primitive 17"), std::string::npos) << f.message;
+    EXPECT_NE(f.message.find("1e+18 m"), std::string::npos) << f.message;
+  }
+  // Up to the bound it builds, one leaf per primitive's box as always.
+  std::vector<Bounds> boxes(64);
+  for (size_t i = 0; i < boxes.size(); ++i)
+    for (int k = 0; k < 3; ++k) boxes[i].lo[k] = boxes[i].hi[k] = (i % 2 ? 1e18 : -1e18) / double(i + 1);
+  EXPECT_EQ(arcus::bvh::build(boxes).order.size(), boxes.size());
 }
 
 TEST(Bvh, OpenClTraversalAgreesWithEmbree) {
