@@ -25,6 +25,7 @@ constexpr int kStdLayers = 8;
 constexpr double kTopGeometric = 84000.0;          // inversions must end below the table's top
 constexpr double kGeopotentialRadius = 6356766.0;  // r0 of the 1976 standard's H = r0·h/(r0 + h)
 constexpr double kMinTemperature = 50.0;           // K: colder air is no air for this model
+constexpr double kBelowSeaLevel = -1000.0;         // geopotential m: the base of the segment below sea level
 
 double geopotential(double h, double r0) { return r0 * h / (r0 + h); }
 
@@ -167,6 +168,13 @@ FieldBuild atmosphere(const arcus_atmosphere_desc& desc) {
   }
   std::sort(breaks.begin(), breaks.end());
   breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+  // Below the lowest break the kernels extend the lowest segment downward; below sea
+  // level this profile continues the first standard lapse rate with every inversion's
+  // full offset (inversions start at 0 m or higher).  A segment from kBelowSeaLevel to 0
+  // carries exactly that, so host and kernels keep one n(h) below sea level too.  (The
+  // lowest segment used to be the surface inversion's own, whose steep gradient,
+  // extended down, reached 0 K at -2975 m: rays there crawled and bent wrongly.)
+  breaks.insert(breaks.begin(), kBelowSeaLevel);
 
   auto temperature = [&](double H) {
     return standard_temperature(H, desc.sea_level_temperature) + inversion_offset(H, layers);
@@ -175,7 +183,13 @@ FieldBuild atmosphere(const arcus_atmosphere_desc& desc) {
   // follows from the hydrostatic equation in closed form, as in atmosphere_eval.
   FieldBuild b = with_kind(ARCUS_KIND_ATMOSPHERE);
   double p = desc.sea_level_pressure;
+  {
+    // The pressure at kBelowSeaLevel, from sea level down (the closed form below, reversed).
+    const double T_low = temperature(kBelowSeaLevel), lapse = (temperature(0.0) - T_low) / -kBelowSeaLevel;
+    p *= std::exp(ARCUS_ATM_G_M_OVER_R * std::log1p(lapse * -kBelowSeaLevel / T_low) / lapse);
+  }
   for (size_t k = 0; k < breaks.size(); ++k) {
+    if (breaks[k] == 0.0) p = desc.sea_level_pressure;  // exactly, not through the round trip
     double H0 = breaks[k], T0 = temperature(H0);
     if (T0 <= kMinTemperature) {
       const std::string where = "atmosphere: the temperature falls to " + number(T0) + " K at geopotential height " +
@@ -208,7 +222,7 @@ FieldBuild atmosphere(const arcus_atmosphere_desc& desc) {
   for (const Layer& l : layers) inversions_top_H = std::max(inversions_top_H, l.top_H);
   b.desc.inversions_top = geometric(inversions_top_H);
   b.desc.layer = b.desc.layer_above = INFINITY;
-  for (size_t k = 0; k + 1 < breaks.size(); ++k) {
+  for (size_t k = 1; k + 1 < breaks.size(); ++k) {  // from sea level: the segment below is no layer
     const double thickness = geometric(breaks[k + 1]) - geometric(breaks[k]);
     double& thinnest = breaks[k + 1] <= inversions_top_H ? b.desc.layer : b.desc.layer_above;
     thinnest = std::min(thinnest, thickness);
