@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "arcus/arcus.h"
+#include "scoped_env.h"
 #include "test_util.h"
 
 using namespace arcus_test;
@@ -365,6 +366,20 @@ TEST(ImageRead, ReadsFloatImagesExactlyTopRowFirst) {
   EXPECT_EQ(arcus_image_read(path.c_str(), &width, &height, nullptr, 0), ARCUS_ERROR_IO);
   EXPECT_NE(std::string(arcus_last_error()).find("arcus_test_image_read.pfm"), std::string::npos);
   EXPECT_EQ(arcus_image_read(nullptr, &width, &height, nullptr, 0), ARCUS_ERROR_INVALID_ARGUMENT);
+}
+
+TEST_F(RainbowSky, ASkyBeyondTheHostsMemoryIsRefusedBeforeAllocating) {
+  // 16384 x 16384 pixels: 11 GiB of images on the host, held to the memory available
+  // (a bound of 1 GiB here) before anything is allocated.
+  Table t(4, 1e-4, 1e-4);
+  Sky s(4, 0.0);
+  s.s.width = s.s.height = 16384;
+  ScopedEnv limit("ARCUS_MEMORY_LIMIT", "1G");
+  arcus_job_t* job = nullptr;
+  EXPECT_EQ(arcus_rainbow_render(ctx(), &t.t, &s.s, &job), ARCUS_ERROR_OUT_OF_MEMORY);
+  EXPECT_EQ(job, nullptr);
+  EXPECT_NE(std::string(arcus_context_last_error(ctx())).find("a 16384 x 16384 sky needs 11 GiB"), std::string::npos)
+      << arcus_context_last_error(ctx());
 }
 
 TEST_F(RainbowSky, BadInputIsRefusedWithAReason) {

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "scoped_env.h"
 #include "test_util.h"
 
 using namespace arcus_test;
@@ -529,6 +530,28 @@ TEST_F(Render, AnImageThatComesOutInfiniteIsAnErrorNotAPicture) {
   EXPECT_EQ(arcus_render_frame(r, nullptr, nullptr, &job), ARCUS_ERROR_NOT_FINITE);
   EXPECT_EQ(job, nullptr);
   EXPECT_NE(last_error().find("pixels are not finite"), std::string::npos) << last_error();
+  arcus_renderer_release(r);
+  arcus_scene_release(scene);
+}
+
+TEST_F(Render, AFrameBeyondTheHostsMemoryIsRefusedBeforeAllocating) {
+  // 16384 x 16384 pixels (the schema's largest) took 4-4.8 GB before "out of host
+  // memory"; now the frame's needs are held to the memory available (here a bound of
+  // 1 GiB, ARCUS_MEMORY_LIMIT) before anything is allocated.
+  const std::string text = scene_text(
+      R"({"type": "constant", "n": 1.0})",
+      R"({"position": [0, 0, 0], "look_at": [1, 0, 0], "vfov_deg": 40, "width": 16384, "height": 16384})", "[]");
+  arcus_scene_t* scene = load(text, "huge_frame");
+  ASSERT_NE(scene, nullptr);
+  arcus_renderer_t* r = nullptr;
+  ASSERT_EQ(arcus_renderer_create(scene, &r), ARCUS_SUCCESS) << last_error();
+  ScopedEnv limit("ARCUS_MEMORY_LIMIT", "1G");
+  arcus_job_t* job = nullptr;
+  EXPECT_EQ(arcus_render_frame(r, nullptr, nullptr, &job), ARCUS_ERROR_OUT_OF_MEMORY);
+  EXPECT_EQ(job, nullptr);
+  EXPECT_NE(last_error().find("a 16384 x 16384 frame needs 128 GiB of host memory; 1 GiB are allowed"),
+            std::string::npos)
+      << last_error();
   arcus_renderer_release(r);
   arcus_scene_release(scene);
 }

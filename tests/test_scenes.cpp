@@ -4,8 +4,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <filesystem>
 #include <fstream>
 
+#include "scoped_env.h"
 #include "test_util.h"
 
 using namespace arcus_test;
@@ -120,6 +122,45 @@ TEST_F(Scenes, BadFilesFailWithTheFileAndTheKeyPath) {
   // A scene handle is checked like every other.
   const char* name = nullptr;
   EXPECT_EQ(arcus_scene_get_name(reinterpret_cast<arcus_scene_t*>(ctx()), &name), ARCUS_ERROR_INVALID_ARGUMENT);
+}
+
+TEST_F(Scenes, ScenesAndRequestsBeyondTheBoundsAreRefusedBeforeAllocating) {
+  // A scene file is read whole: 1.5 GB of NUL bytes took 1.7 GB and 5 s.  Now its size is
+  // held to ARCUS_MAX_SCENE_BYTES (64 MiB) first; a sparse file stands in for a big one.
+  const std::string big = ::testing::TempDir() + "arcus_scene_big_" + std::to_string(getpid()) + ".json";
+  { std::ofstream(big) << "{}"; }
+  std::filesystem::resize_file(big, uint64_t(3) << 29);
+  const auto huge = load_error(big);
+  EXPECT_EQ(huge.first, ARCUS_ERROR_IO);
+  EXPECT_TRUE(contains_ci(huge.second.c_str(), "1.5 GiB is more than the 64 MiB allowed (ARCUS_MAX_SCENE_BYTES"))
+      << huge.second;
+  std::filesystem::remove(big);
+  // 2^26 rays (the schema's limit) are 3 GiB of origins and directions: within a
+  // host limit of 256 MiB they are refused, naming the rays.
+  ScopedEnv limit("ARCUS_MEMORY_LIMIT", "256M");
+  const auto fan = load_error(temp_file("fan", R"({"name": "f", "medium": {"type": "constant", "n": 1.0},
+      "rays": {"origin": [0, 0, 0], "fan": {"direction": [1, 0, 0], "plane_normal": [0, 0, 1],
+               "min_deg": -10, "max_deg": 10, "count": 67108864}},
+      "integrator": {"method": "rk4", "step": 0.1, "length": 1}})"));
+  EXPECT_EQ(fan.first, ARCUS_ERROR_OUT_OF_MEMORY);
+  EXPECT_TRUE(contains_ci(fan.second.c_str(), "$.rays: 67108864 rays needs 3 GiB of host memory; 256 MiB are allowed"))
+      << fan.second;
+  // The same bound on a call: 4 million rays need about 0.7 GiB while they are advanced.
+  const size_t count = size_t(1) << 22;
+  std::vector<double> origins(3 * count, 0.0), directions(3 * count, 0.0);
+  for (size_t i = 0; i < count; ++i) directions[3 * i] = 1;
+  auto field = constant(1.0);
+  arcus_advance_params p = fixed(ARCUS_METHOD_RK4, 0.1, 1.0);
+  arcus_job_t* job = nullptr;
+  EXPECT_EQ(arcus_advance(ctx(), field.get(), &p, count, origins.data(), directions.data(), nullptr, &job),
+            ARCUS_ERROR_OUT_OF_MEMORY);
+  EXPECT_EQ(job, nullptr);
+  EXPECT_TRUE(contains_ci(last_error().c_str(), "4194304 rays needs")) << last_error();
+  // A malformed bound is said to be one.
+  ScopedEnv bad("ARCUS_MEMORY_LIMIT", "lots");
+  EXPECT_EQ(arcus_advance(ctx(), field.get(), &p, 1, origins.data(), directions.data(), nullptr, &job),
+            ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_TRUE(contains_ci(last_error().c_str(), "ARCUS_MEMORY_LIMIT = 'lots' is not a positive size")) << last_error();
 }
 
 #ifdef ARCUS_TRACE

@@ -9,6 +9,7 @@
 
 #include "core/context.h"
 #include "core/error.h"
+#include "core/limits.h"
 #include "core/format.h"
 #include "core/slices.h"
 #include "curved/advance_desc.h"  // kernels/curved/advance_desc.h: shared with the kernel
@@ -263,6 +264,9 @@ bool run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
                                 std::to_string(capacity) + " points");
   check_device_allocation(ctx, static_cast<double>(stride) * state_reals * sizeof(Real), ray_bytes + path_bytes,
                           std::to_string(count) + " rays");
+  // On the host: the staged input and state as on the device, the paths read back, and
+  // the job's results (positions, directions, lengths, steps, statuses: 80 bytes a ray).
+  limits::require_host_memory(ray_bytes + path_bytes + 80.0 * count, std::to_string(count) + " rays");
 
   // Structure-of-arrays input; padding rays have a zero direction, so the kernel
   // marks them invalid and they never take a step.

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/format.h"
+#include "core/limits.h"
 #include "curved/params.h"
 #include "scene/json_reader.h"
 
@@ -207,6 +208,8 @@ void parse_fan_rays(const Node& rays, const SceneLimits& limits, SceneDesc* s) {
     }
   }
   const size_t fans = std::max<size_t>(per_fan.size(), 1);
+  arcus::limits::require_host_memory(48.0 * double(fans) * double(dirs.size()),
+                              rays.path() + ": " + std::to_string(fans * dirs.size()) + " rays");
   s->origins.reserve(3 * fans * dirs.size());
   s->directions.reserve(3 * fans * dirs.size());
   for (size_t f = 0; f < fans; ++f)

@@ -9,6 +9,7 @@
 #include "core/buffer.h"
 #include "core/context.h"
 #include "core/error.h"
+#include "core/limits.h"
 #include "core/format.h"
 #include "core/job.h"
 #include "core/kernel_source.h"
@@ -256,6 +257,10 @@ std::unique_ptr<SkyJob> render_sky(arcus_context_t* ctx, const arcus_rainbow_tab
   d.thetas = static_cast<int32_t>(t.theta_count);
   d.phis = static_cast<int32_t>(t.phi_count);
 
+  // On the host: per pixel the XYZ, RGB, θ and luminance images and the sky image
+  // behind it (44 bytes), and the disc-averaged table.
+  limits::require_host_memory(44.0 * pixels + 8.0 * L * t.phi_count * t.theta_count,
+                              "a " + std::to_string(s.width) + " x " + std::to_string(s.height) + " sky");
   // ---- the inputs: β over the sun's disc, spectra, colour weights
   const std::vector<double> beta = disc_average(t, s.sun_diameter_deg, s.sun_samples);
   const std::vector<double> zeros(L, 0.0);

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/limits.h"
 #include "image/image_io.h"
 #include "spectral/cie.h"
 #include "spectral/srgb.h"
@@ -691,6 +692,14 @@ std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_call
   const std::string problem = technique_problem(*r, r->techniques);
   if (!problem.empty()) fail(ARCUS_ERROR_UNSUPPORTED, problem);
   const size_t n = static_cast<size_t>(c.width) * c.height;
+  // What a frame holds on the host at once: per pixel its primary ray's state, the
+  // traced batch and the job's image and hits (under 512 bytes), per photon its state
+  // and its place in the map (under 256).
+  limits::require_host_memory(512.0 * n + 256.0 * r->scene->desc.photons.count,
+                              "a " + std::to_string(c.width) + " x " + std::to_string(c.height) + " frame" +
+                                  (r->scene->desc.photons.count
+                                       ? " with " + std::to_string(r->scene->desc.photons.count) + " photons"
+                                       : std::string()));
   auto job = std::make_unique<RenderJob>(ctx);
   arcus_render_stats& st = job->render_stats;
   st.techniques = r->techniques;

@@ -28,7 +28,7 @@ echo "run_fuzz: building $bin with $CXX"
 "$CXX" -std=c++17 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
   -I"$root/src" -I"$root/include" \
   "$root/tests/fuzz/fuzz_scene.cpp" "$root/src/scene/json_reader.cpp" "$root/src/curved/scene_desc.cpp" \
-  "$root/src/curved/params.cpp" \
+  "$root/src/curved/params.cpp" "$root/src/core/files.cpp" "$root/src/core/limits.cpp" \
   -o "$bin"
 
 shopt -s nullglob
