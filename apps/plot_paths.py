@@ -59,8 +59,10 @@ def read_paths(path, count):
 
 
 def read_scene(directory):
+    """The scene arcus_trace copied beside its output (a regular file: a FIFO or a device
+    there would block or never end), or None."""
     path = os.path.join(directory, "scene.json")
-    if not os.path.exists(path):
+    if not os.path.isfile(path):
         return None
     with open(path) as f:
         return json.load(f)

@@ -47,19 +47,11 @@ class Failure(Exception):
 
 
 def check_scene(ctx, path):
-    """Has the library read and check the scene, then parses it: the document (dict).
-
-    Context.load_scene wraps curved scenes only: it loads any scene, then refuses other
-    engines' with ARCUS_ERROR_UNSUPPORTED, which here means the file was read and
-    checked."""
-    try:
-        ctx.load_scene(path)
-    except arcus.Error as exc:
-        if exc.status != "ARCUS_ERROR_UNSUPPORTED":
-            raise
-    with open(path, encoding="utf-8") as f:
-        doc = json.load(f)
-    if "water" not in doc:
+    """The scene as the library read and checked it: the document (dict) of an ocean
+    scene; another engine's scene is a Failure."""
+    from arcus import _scene_file
+    engine, doc = _scene_file.read(path, ("ocean", "render", "rainbow", "sweep", "curved"))
+    if engine != "ocean":
         raise Failure("%s: not an ocean scene (no \"water\"; scenes/README.md, \"Ocean scenes\")" % path)
     return doc
 

@@ -20,7 +20,6 @@ scheduler that does not answer, prints one line and exits with status 2; a faile
 task exits with status 1 (the tasks that finished are cached).
 """
 import argparse
-import json
 import os
 import sys
 from pathlib import Path
@@ -51,10 +50,10 @@ def main(argv=None):
     name = Path(args.spec).stem
     try:
         try:
-            with open(args.spec, encoding="utf-8") as f:
-                spec = json.load(f)
-        except (OSError, ValueError) as exc:
-            raise arcus.ArgumentError("cannot read the spec: %s" % exc) from None
+            spec = sweep.load_spec(args.spec)  # read and checked by the library
+        except arcus.Error as exc:  # a missing or special file too; the message names the file and key
+            print("arcus_sweep: %s" % exc.message.splitlines()[0], file=sys.stderr)
+            return EXIT_BAD_SPEC
         cache_dir = False if args.no_cache else args.cache
         result = sweep.run_spec(spec, base_dir=os.path.dirname(os.path.abspath(args.spec)),
                                 client=args.scheduler, workers=args.workers, cache_dir=cache_dir,

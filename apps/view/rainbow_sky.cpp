@@ -131,13 +131,23 @@ bool same_view(const arcus_rainbow_sky& a, const arcus_rainbow_sky& b) {
 
 constexpr double kDeg = M_PI / 180.0;
 
+// The exported sky file as JSON, or a discarded value when it is no such file.  Only a
+// regular file of a sane size is opened: a FIFO would block the viewer for ever and
+// /dev/zero never end (the library's scene reader refuses both the same way).
+json read_json_file(const std::string& path) {
+  std::error_code error;
+  if (!fs::is_regular_file(path, error) || fs::file_size(path, error) > (uint64_t(64) << 20) || error)
+    return json(json::value_t::discarded);
+  std::ifstream in(path);
+  return json::parse(in, nullptr, false);
+}
+
 class RainbowSky final : public Preview {
  public:
   RainbowSky(arcus_context_t* ctx, const std::string& path) : ctx_(ctx) {
-    std::ifstream in(path);
-    if (!in) throw Failure(path + ": cannot open");
-    const json doc = json::parse(in, nullptr, false);
-    if (doc.is_discarded() || !doc.is_object()) throw Failure(path + ": not a JSON object");
+    const json doc = read_json_file(path);
+    if (doc.is_discarded() || !doc.is_object())
+      throw Failure(path + ": not a JSON object (or not a regular file of at most 64 MiB)");
     const json& version = doc.at("arcus_rainbow_sky");
     if (version != 1)
       throw Failure(path + ": \"arcus_rainbow_sky\" is " + shown(version) + "; this arcus_view reads version 1");
@@ -297,9 +307,7 @@ class RainbowSky final : public Preview {
 }  // namespace
 
 bool is_rainbow_sky_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return false;
-  const json doc = json::parse(in, nullptr, false);
+  const json doc = read_json_file(path);
   return !doc.is_discarded() && doc.is_object() && doc.contains("arcus_rainbow_sky");
 }
 

@@ -204,6 +204,7 @@ void Node::fail(const std::string& what) const { fail_at(*file_, path_, what); }
 bool Node::is_object() const { return value_->is_object(); }
 bool Node::is_array() const { return value_->is_array(); }
 bool Node::is_number() const { return value_->is_number(); }
+bool Node::is_null() const { return value_->is_null(); }
 
 namespace {
 std::string join(const std::vector<const char*>& names) {

@@ -68,6 +68,7 @@ class Node {
   bool is_object() const;
   bool is_array() const;
   bool is_number() const;
+  bool is_null() const;
 
   // An object whose keys all come from `allowed` (else: "<path>.<key>: unknown key").
   void expect_object(std::initializer_list<const char*> allowed) const;

@@ -18,6 +18,7 @@ namespace {
 struct Registered {
   const char* engine;
   const char* marker;  // the top-level key that marks the engine's scenes; null: the default
+  int precedence;      // among several markers present, the highest wins
   Loader loader;
 };
 
@@ -28,8 +29,8 @@ std::vector<Registered>& loaders() {
 
 }  // namespace
 
-void register_loader(const char* engine, Loader loader, const char* marker) {
-  loaders().push_back({engine, marker, std::move(loader)});
+void register_loader(const char* engine, Loader loader, const char* marker, int precedence) {
+  loaders().push_back({engine, marker, precedence, std::move(loader)});
 }
 
 const Loader& loader_for(const std::string& path) {
@@ -37,11 +38,14 @@ const Loader& loader_for(const std::string& path) {
   // "camera"); a document that is not an object falls to the default, which reports it.
   const json::Document doc = json::Document::from_file(path);
   const json::Node root = doc.root();
-  const Registered* fallback = nullptr;
+  const Registered *fallback = nullptr, *marked = nullptr;
   for (const Registered& r : loaders()) {
-    if (!r.marker) fallback = &r;
-    else if (root.is_object() && root.find(r.marker)) return r.loader;
+    if (!r.marker)
+      fallback = &r;
+    else if (root.is_object() && root.find(r.marker) && (!marked || r.precedence > marked->precedence))
+      marked = &r;
   }
+  if (marked) return marked->loader;
   if (!fallback) fail(ARCUS_ERROR_UNSUPPORTED, path + ": no engine reads scene files");
   return fallback->loader;
 }

@@ -24,11 +24,12 @@ using Locked = std::function<void(const std::function<void()>&)>;
 using Loader = std::function<arcus_scene_s*(arcus_context_t* ctx, const std::string& path, const Locked& locked)>;
 
 // `marker`: the top-level key of the engine's scene files ("camera"), or null for the
-// engine that reads every other scene (the curved one).
-void register_loader(const char* engine, Loader loader, const char* marker);
+// engine that reads every other scene (the curved one).  When a document has the
+// markers of several engines, the one registered with the highest `precedence` reads it.
+void register_loader(const char* engine, Loader loader, const char* marker, int precedence = 0);
 struct LoaderEntry {
-  LoaderEntry(const char* engine, Loader loader, const char* marker = nullptr) {
-    register_loader(engine, std::move(loader), marker);
+  LoaderEntry(const char* engine, Loader loader, const char* marker = nullptr, int precedence = 0) {
+    register_loader(engine, std::move(loader), marker, precedence);
   }
 };
 

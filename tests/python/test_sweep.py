@@ -296,14 +296,21 @@ def test_cli(repo, client, tmp_path):
     assert r.returncode == 0 and "6 tasks, 0 computed, 6 read from the cache" in r.stdout, r.stderr
 
 
+# The spec file is read and checked by the library: its messages name the key's path.
 @pytest.mark.parametrize("spec, match", [
-    ({"kind": "phase_table"}, "unknown kind 'phase_table'"),
-    ({"kind": "phase_tables", "particles": [], "wavelengths": [500], "theta": [130]}, "non-empty list"),
+    ({"kind": "phase_table"}, '$.kind: "phase_table" is not one of phase_tables, ocean_grid, frames'),
+    ({"kind": "phase_tables", "particles": [], "wavelengths": [500], "theta": [130]},
+     "$.particles: expected at least one particle"),
     ({"kind": "phase_tables", "particles": PARTICLES, "wavelengths": {"linspace": [400, 700]}, "theta": [130]},
-     "three finite numbers"),
+     "$.wavelengths.linspace: expected [first, last, count]"),
     ({"kind": "frames", "scene": "x.json", "parameter": "camera.vfov_deg", "values": [1], "fps": 24},
-     "unknown key 'fps'"),
-    ("not json", "cannot read the spec"),
+     "$.fps: unknown key"),
+    ({"kind": "phase_tables", "particles": PARTICLES, "wavelengths": [500], "theta": [130], "grid": 1.5},
+     "$.grid: expected a non-negative integer, got 1.5"),
+    ({"kind": "phase_tables", "particles": PARTICLES, "wavelengths": [500], "theta": {"range": [100, 180, 1e-9]}},
+     "$.theta.range: makes 80000000001 values, more than 1000000"),
+    ("not json", "not valid JSON"),
+    ('{"kind": "frames", "kind": "frames"}', "$.kind: key given twice"),
 ])
 def test_cli_bad_spec(repo, tmp_path, spec, match):
     path = tmp_path / "bad.json"

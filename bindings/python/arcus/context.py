@@ -294,6 +294,12 @@ class _ContextState:
         self.objects = weakref.WeakSet()
         self.callback = None  # the ctypes wrapper must outlive its registration
         self.lock = threading.Lock()
+        # Jobs running on this context, by thread, and close(): once closing, new calls
+        # are refused and every running job is cancelled at its next slice, then close()
+        # waits for them to return their results before releasing the context.
+        self.jobs = threading.Condition()
+        self.job_threads = collections.Counter()
+        self.closing = False
 
     def release(self):
         if self.callback is not None:
@@ -335,8 +341,18 @@ class Context:
     # -- lifetime --
 
     def close(self):
-        """Releases the context, every field realised on it and its scenes (idempotent)."""
+        """Releases the context, every field realised on it and its scenes (idempotent).
+
+        Safe from any thread: jobs running on the context in other threads are cancelled
+        at their next slice (a fraction of a second) and raise :class:`arcus.Error`
+        ``ARCUS_ERROR_CANCELLED`` with what they had computed attached (``.result``);
+        close() returns once they have, and later calls raise "closed"."""
         self._not_in_progress_callback()
+        state = self._state
+        me = threading.get_ident()
+        with state.jobs:
+            state.closing = True
+            state.jobs.wait_for(lambda: sum(state.job_threads.values()) == state.job_threads[me])
         self._finalizer()
 
     @property
@@ -364,10 +380,12 @@ class Context:
 
     @property
     def _handle(self):
-        if self.closed:
+        state = self._state
+        # A job's own thread may go on reading its results while close() waits for it.
+        if self.closed or (state.closing and not state.job_threads[threading.get_ident()]):
             raise ArgumentError("this arcus.Context is closed")
         self._not_in_progress_callback()
-        return self._state.handle
+        return state.handle
 
     def _check(self, code):
         _lib.check(code, self._handle)
@@ -516,24 +534,42 @@ class Context:
         job and is raised here once the library has returned.
         """
         ctx = self._handle
+        state = self._state
+        me = threading.get_ident()
+        with state.jobs:
+            if state.closing:
+                raise ArgumentError("this arcus.Context is closed")
+            state.job_threads[me] += 1
+        try:
+            return self._run_registered_job(ctx, start, progress, record_path, what, reader)
+        finally:
+            with state.jobs:
+                state.job_threads[me] -= 1
+                state.jobs.notify_all()
+
+    def _run_registered_job(self, ctx, start, progress, record_path, what, reader):
         raised = []
-        if progress is None:
-            callback = _lib.PROGRESS_CALLBACK()
-        else:
-            state = self._state
+        closed_meanwhile = []
+        state = self._state
 
-            def on_progress(_user, fraction):
-                active = _active()
-                active.append(state)
-                try:
-                    return 1 if progress(fraction) else 0
-                except BaseException as exc:  # KeyboardInterrupt too: it cancels the job
-                    raised.append(exc)
-                    return 1
-                finally:
-                    active.pop()
+        # Always a callback: close() from another thread cancels the job through it.
+        def on_progress(_user, fraction):
+            if state.closing:
+                closed_meanwhile.append(True)
+                return 1
+            if progress is None:
+                return 0
+            active = _active()
+            active.append(state)
+            try:
+                return 1 if progress(fraction) else 0
+            except BaseException as exc:  # KeyboardInterrupt too: it cancels the job
+                raised.append(exc)
+                return 1
+            finally:
+                active.pop()
 
-            callback = _lib.PROGRESS_CALLBACK(on_progress)
+        callback = _lib.PROGRESS_CALLBACK(on_progress)
         job = c_void_p()
         try:
             code = start(callback, byref(job))
@@ -541,6 +577,8 @@ class Context:
             _flush_deferred()
         # The message lives only until the next call on the context: read it first.
         message = _lib.last_error(ctx) if code != C.SUCCESS else ""
+        if closed_meanwhile:
+            message += " (arcus.Context.close() was called from another thread)"
         try:
             if raised:
                 raise raised[0]

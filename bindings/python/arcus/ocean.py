@@ -493,8 +493,8 @@ def render(scene, *, photons=None, k=None, steps=None, estimator=None, exr=None,
         if isinstance(scene, dict):
             doc = json.loads(json.dumps(scene))
         else:
-            with open(scene) as f:
-                doc = json.load(f)
+            from . import _scene_file
+            doc = _scene_file.read(scene, ("ocean",))[1]  # read and checked by the library
         if photons is not None:
             doc.setdefault("photons", {})["count"] = int(photons)
         march = doc.setdefault("view", {}).setdefault("march", {})

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _lib
+from . import _lib, _scene_file
 from ._args import to_path
 from ._errors import ArgumentError
 from .image import read as read_image
@@ -68,17 +68,15 @@ def _vector(d, key, default=None, where="scene"):
 
 
 def load_scene(scene):
-    """A scene dict from a dict or a JSON file path (relative paths in it stay as given)."""
+    """A scene dict from a dict or a JSON file path (relative paths in it stay as given).
+
+    A file is read and checked by the library (its schema: scenes/README.md, "Rainbow
+    scenes"): an unknown or repeated key, a wrong type, a file that is not a regular
+    file or is larger than ARCUS_MAX_SCENE_BYTES raise :class:`arcus.Error` naming the
+    file and the key."""
     if isinstance(scene, dict):
         return scene
-    path = os.fspath(scene)
-    try:
-        with open(path) as f:
-            return json.load(f)
-    except OSError as e:
-        raise ArgumentError("cannot read the scene %s: %s" % (path, e.strerror)) from None
-    except json.JSONDecodeError as e:
-        raise ArgumentError("the scene %s is not valid JSON: %s" % (path, e)) from None
+    return _scene_file.read(scene, ("rainbow",))[1]
 
 
 def _axis(tables, key, default):

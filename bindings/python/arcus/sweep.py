@@ -43,10 +43,13 @@ import itertools
 import json
 import math
 import os
+import stat
 import sys
 import tempfile
 import threading
 import time
+import warnings
+import zipfile
 from dataclasses import dataclass, fields
 
 import numpy as np
@@ -56,6 +59,8 @@ from ._errors import ArgumentError
 
 #: Seconds to wait for a scheduler given by address before giving up.
 CONNECT_TIMEOUT = 10.0
+#: The most values one axis of a spec may have (as the library's reader: src/sweep/spec.h).
+MAX_AXIS_VALUES = 10 ** 6
 #: Part of every cache key: bump when the cache files' layout or a task's meaning changes.
 CACHE_FORMAT = 1
 #: Particle kinds of :func:`phase_tables` and the keys each takes, with their defaults
@@ -133,12 +138,98 @@ def _atomic_savez(path, arrays):
         raise
 
 
+#: The largest cache entry read back, uncompressed: a task's arrays (a phase table is a
+#: few MB, an ocean or frame image tens).  An entry declaring more is not decompressed.
+MAX_CACHE_ENTRY_BYTES = 512 << 20
+
+_warned = set()  # (directory, reason) pairs already warned about
+
+
+def _warn_once(key, message):
+    if key not in _warned:
+        _warned.add(key)
+        warnings.warn(message, RuntimeWarning, stacklevel=3)
+
+
+def _distrust(st):
+    """Why a directory or entry (its os.stat_result) is not to be trusted, or None: it
+    must be this user's own and writable by nobody else (docs/security.md)."""
+    if st.st_uid != os.geteuid():
+        return "it is owned by uid %d, not by this user (uid %d)" % (st.st_uid, os.geteuid())
+    if st.st_mode & (stat.S_IWGRP | stat.S_IWOTH):
+        return "it is writable by group or others"
+    return None
+
+
+def _private_directory(path):
+    """``path`` made (each missing component 0700, whatever the umask) and checked to be
+    this user's own and writable by nobody else; None, with a warning once, when it is
+    not (then nothing is cached)."""
+    path = os.path.abspath(path)
+    parts = path.split(os.sep)
+    for i in range(2, len(parts) + 1):
+        try:
+            os.mkdir(os.sep.join(parts[:i]), 0o700)
+        except FileExistsError:
+            pass
+        except OSError:
+            break  # the check below says why
+    try:
+        st = os.stat(path)
+        why = None if stat.S_ISDIR(st.st_mode) else "it is not a directory"
+        why = why or _distrust(st)
+    except OSError as exc:
+        why = "it cannot be used: %s" % exc.strerror
+    if why:
+        _warn_once((path, "dir"), "arcus.sweep: the table cache %s is not used: %s; someone else could plant "
+                   "entries there.  Make it yours (chown, chmod go-w) or give another cache_dir; until then "
+                   "nothing is cached." % (path, why))
+        return None
+    return path
+
+
+def _checked_npz(f):
+    """The arrays of the .npz file object ``f``, each member's declared size checked
+    against the bound before anything is decompressed (a 2 MB entry inflating to
+    2.3 GB took 60 s): None when any member is not a plain numeric array or the total
+    exceeds MAX_CACHE_ENTRY_BYTES."""
+    with zipfile.ZipFile(f) as z:
+        members = z.infolist()
+        if sum(m.file_size for m in members) > MAX_CACHE_ENTRY_BYTES:
+            return None
+        arrays = {}
+        for m in members:
+            if not m.filename.endswith(".npy"):
+                return None
+            with z.open(m) as member:
+                version = np.lib.format.read_magic(member)
+                if version not in ((1, 0), (2, 0)):  # what np.savez writes
+                    return None
+                read_header = np.lib.format.read_array_header_1_0 if version == (1, 0) else \
+                    np.lib.format.read_array_header_2_0
+                shape, _, dtype = read_header(member)
+                # What the header claims must fit in what the member holds: numpy
+                # allocates the array from the header before reading it.
+                if dtype.hasobject or math.prod(shape) * dtype.itemsize > m.file_size:
+                    return None
+            with z.open(m) as member:
+                arrays[m.filename[:-4]] = np.lib.format.read_array(member, allow_pickle=False)
+        return arrays
+
+
 class _Cache:
     """One .npz per task: the payload arrays, ``_key`` (the task's canonical JSON) and
-    ``_checksum`` (of the payload).  ``directory`` None: no cache."""
+    ``_checksum`` (of the payload).  ``directory`` None: no cache.
+
+    The cache is this user's alone (docs/security.md): a directory someone else owns or
+    can write is not used (a warning, once), an entry not this user's own, a link, or
+    one larger than MAX_CACHE_ENTRY_BYTES is not read (it is recomputed), and entries
+    are written 0600 to a fresh temporary file renamed into place.  A cache that cannot
+    be written costs only the cache: a warning, and the results are returned.
+    """
 
     def __init__(self, directory):
-        self.directory = directory
+        self.directory = None if directory is None else _private_directory(directory)
 
     def _path(self, digest):
         return os.path.join(self.directory, digest + ".npz")
@@ -148,9 +239,19 @@ class _Cache:
         if self.directory is None:
             return None
         try:
-            with np.load(self._path(digest), allow_pickle=False) as f:
-                arrays = {name: f[name] for name in f.files}
-        except Exception:  # missing, truncated, not a zip, CRC error, bad header: recompute
+            fd = os.open(self._path(digest), os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK | os.O_CLOEXEC)
+        except OSError:  # missing, a link, unreadable
+            return None
+        st = os.fstat(fd)
+        if not stat.S_ISREG(st.st_mode) or _distrust(st) or st.st_size > MAX_CACHE_ENTRY_BYTES:
+            os.close(fd)
+            return None
+        with os.fdopen(fd, "rb") as f:
+            try:
+                arrays = _checked_npz(f)
+            except Exception:  # truncated, not a zip, CRC error, bad header: recompute
+                return None
+        if arrays is None:
             return None
         stored_key, stored_sum = arrays.pop("_key", None), arrays.pop("_checksum", None)
         if stored_key is None or stored_sum is None or str(stored_key) != key or str(stored_sum) != _checksum(arrays):
@@ -158,8 +259,13 @@ class _Cache:
         return arrays
 
     def write(self, digest, key, payload):
-        if self.directory is not None:
+        if self.directory is None:
+            return
+        try:
             _atomic_savez(self._path(digest), dict(payload, _key=np.array(key), _checksum=np.array(_checksum(payload))))
+        except OSError as exc:
+            _warn_once((self.directory, "write"), "arcus.sweep: cannot write to the table cache %s (%s); the "
+                       "results are returned but not cached" % (self.directory, exc))
 
 
 def _payload(result, function):
@@ -231,10 +337,15 @@ def _dask_client(client, workers, connect_timeout):
         finally:
             c.close()
         return
-    # One thread a worker: a task keeps the device busy by itself.  Port 0 for the
-    # scheduler's HTTP server: a scheduler already on 8787 is no reason for a warning.
+    # One thread a worker: a task keeps the device busy by itself.  Everything listens
+    # on 127.0.0.1 only, and no dashboard is served: Dask authenticates nobody, so a
+    # cluster reachable from the network runs whatever anyone sends it (docs/security.md;
+    # for a dashboard or a cluster across machines, pass a Client of your own).
+    # (Its HTTP server, health checks only then, takes a free port: a scheduler already on
+    # 8787 is no reason for a clash.)
     cluster = distributed.LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
-                                       processes=True, dashboard_address=":0")
+                                       processes=True, host="127.0.0.1", dashboard_address="127.0.0.1:0",
+                                       scheduler_kwargs={"dashboard": False})
     try:
         with distributed.Client(cluster, set_as_default=False) as c:
             yield c
@@ -658,13 +769,8 @@ def _scene(scene, name):
         return _plain(scene, name), None
     if not isinstance(scene, (str, os.PathLike)):
         raise ArgumentError("%s must be a scene file or a dict, got %r" % (name, scene))
-    try:
-        with open(scene, encoding="utf-8") as f:
-            doc = json.load(f)
-    except (OSError, ValueError) as exc:
-        raise ArgumentError("%s: cannot read %r: %s" % (name, os.fspath(scene), exc)) from None
-    if not isinstance(doc, dict):
-        raise ArgumentError("%s: %r is not a JSON object" % (name, os.fspath(scene)))
+    from . import _scene_file
+    _, doc = _scene_file.read(scene, ("ocean", "render"), name)  # read and checked by the library
     return doc, os.path.dirname(os.path.abspath(scene))
 
 
@@ -829,10 +935,14 @@ def spec_axis(value, name):
             raise ArgumentError("%s.%s must be three finite numbers, got %r" % (name, form, args))
         first, last, third = a
         if form == "linspace":
-            return np.linspace(first, last, to_int(third, name + ".linspace count", 1, 10 ** 6))
+            return np.linspace(first, last, to_int(third, name + ".linspace count", 1, MAX_AXIS_VALUES))
         if not (third > 0 and last >= first):
             raise ArgumentError("%s.range needs step > 0 and last >= first, got %r" % (name, args))
-        count = int(math.floor((last - first) / third + 1e-9)) + 1
+        count = math.floor((last - first) / third + 1e-9) + 1
+        if not count <= MAX_AXIS_VALUES:  # [100, 180, 1e-9] asked for 596 GiB
+            raise ArgumentError("%s.range %r makes %.3g values, more than %d (a larger step?)"
+                                % (name, args, count, MAX_AXIS_VALUES))
+        count = int(count)
         values = first + third * np.arange(count)
         if abs(values[-1] - last) <= 1e-9 * third:
             values[-1] = last  # exactly: 0 + 1800 steps of 0.1 must not land past 180
@@ -848,6 +958,15 @@ SPEC_KINDS = dict(
                 ("width", "height", "photons", "k", "steps", "estimator"), ("chlorophyll", "a_d400", "a_y440")),
     frames=(frames, ("scene", "parameter", "values"), ("width", "height", "techniques"), ("values",)),
 )
+
+
+def load_spec(path):
+    """The sweep spec file at ``path`` (scenes/sweeps/*.json) read and checked by the
+    library, as the dict :func:`run_spec` takes: an unknown or repeated key, a wrong
+    type, an axis of more than MAX_AXIS_VALUES values or a file that is not a regular
+    file raise :class:`arcus.Error` naming the file and the key."""
+    from . import _scene_file
+    return _scene_file.read(path, ("sweep",), "spec")[1]
 
 
 def run_spec(spec, *, base_dir=".", **options):

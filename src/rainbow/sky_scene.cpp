@@ -1,0 +1,158 @@
+// Rainbow scenes (scenes/rainbow/*.json, scenes/README.md "Rainbow scenes"), read by the
+// library's strict reader like every scene file: arcus_scene_load gives a scene of
+// engine "rainbow", whose document arcus.rainbow.render turns into tables and a sky.
+// The schema is checked here (keys, types, integers); the physics' ranges (a sun above
+// the horizon, positive sizes) are checked where the values are used.
+#include <memory>
+#include <string>
+
+#include "core/context.h"
+#include "curved/scene_desc.h"  // parse_name
+#include "scene/json_reader.h"
+#include "scene/scene.h"
+#include "sweep/spec.h"  // check_axis: tables' axes are written as sweep specs write them
+
+namespace arcus::rainbow {
+namespace {
+
+using json::Node;
+
+void numbers(const Node& n, std::initializer_list<const char*> keys) {
+  for (const char* k : keys)
+    if (auto v = n.find(k)) v->number();
+}
+
+void integers(const Node& n, std::initializer_list<std::pair<const char*, uint64_t>> keys) {
+  for (const auto& [k, max] : keys)
+    if (auto v = n.find(k)) v->integer(max);
+}
+
+void pair_of_numbers(const Node& n) {
+  const std::vector<Node> e = n.elements();
+  if (e.size() != 2) n.fail("expected [low, high]");
+  e[0].number();
+  e[1].number();
+}
+
+// One population of drops or crystals (arcus.sky.populations).
+void check_population(const Node& p) {
+  enum class Shape { sphere, raindrop, crystal };
+  Shape shape = Shape::sphere;
+  if (auto v = p.find("shape"))
+    shape = v->choice<Shape>({{"sphere", Shape::sphere}, {"raindrop", Shape::raindrop}, {"crystal", Shape::crystal}});
+  if (shape == Shape::crystal) {
+    p.expect_object({"shape", "crystal", "size", "orientation", "tilt_deg", "orientations", "seed", "density"});
+    if (auto v = p.find("crystal")) v->choice<int>({{"column", 0}, {"plate", 1}});
+    if (auto v = p.find("orientation")) v->choice<int>({{"random", 0}, {"horizontal", 1}});
+    p.member("size").number();
+    p.member("density").number();
+    numbers(p, {"tilt_deg"});
+    integers(p, {{"orientations", 10000000}, {"seed", uint64_t(1) << 31}});
+    return;
+  }
+  const auto distribution = p.find("distribution");
+  if (!distribution) {
+    if (shape == Shape::sphere) {
+      p.expect_object({"shape", "radius", "density", "method", "nonspherical_above_mm"});
+      p.member("radius").number();
+      numbers(p, {"nonspherical_above_mm"});
+    } else {
+      p.expect_object({"shape", "diameter", "density"});
+      p.member("diameter").number();
+    }
+    p.member("density").number();
+  } else {
+    enum class Kind { marshall_palmer, gamma };
+    const Kind kind = distribution->choice<Kind>({{"marshall_palmer", Kind::marshall_palmer}, {"gamma", Kind::gamma}});
+    if (kind == Kind::marshall_palmer) {
+      p.expect_object({"shape", "distribution", "rain_rate_mm_h", "diameter_range_mm", "bins", "method",
+                       "nonspherical_above_mm"});
+      p.member("rain_rate_mm_h").number();
+      if (auto v = p.find("diameter_range_mm")) pair_of_numbers(*v);
+    } else {
+      p.expect_object({"shape", "distribution", "mode_radius", "mu", "total_density", "radius_range", "bins", "method",
+                       "nonspherical_above_mm"});
+      p.member("mode_radius").number();
+      p.member("total_density").number();
+      numbers(p, {"mu"});
+      if (auto v = p.find("radius_range")) pair_of_numbers(*v);
+    }
+    integers(p, {{"bins", 200}});
+    numbers(p, {"nonspherical_above_mm"});
+  }
+  if (auto v = p.find("method")) v->choice<int>({{"rays", 0}, {"mie", 1}});
+}
+
+// A background: a spectrum, or (the sky only) an image.
+void check_background(const Node& b, bool image_allowed) {
+  if (image_allowed && b.find("image")) {
+    b.expect_object({"image", "scale"});
+    if (b.member("image").string().empty()) b.member("image").fail("expected a file name");
+    numbers(b, {"scale"});
+    return;
+  }
+  b.expect_object({"spectrum", "radiance"});
+  if (auto v = b.find("spectrum")) v->choice<int>({{"flat", 0}, {"rayleigh", 1}});
+  numbers(b, {"radiance"});
+}
+
+void check_scene(const Node& root) {
+  root.expect_object({"name", "description", "image", "camera", "sun", "rain", "background", "tables"});
+  if (auto v = root.find("name")) curved::parse_name(*v);
+  if (auto v = root.find("description")) v->string();
+  if (auto img = root.find("image")) {
+    img->expect_object({"width", "height", "fov_deg", "exposure"});
+    integers(*img, {{"width", 16384}, {"height", 16384}});
+    numbers(*img, {"fov_deg", "exposure"});
+  }
+  if (auto cam = root.find("camera")) {
+    cam->expect_object({"position", "look_azimuth_deg", "look_elevation_deg"});
+    if (auto v = cam->find("position")) v->vec3();
+    numbers(*cam, {"look_azimuth_deg", "look_elevation_deg"});
+  }
+  if (auto sun = root.find("sun")) {
+    sun->expect_object({"elevation_deg", "azimuth_deg", "diameter_deg", "samples", "spectrum", "temperature_k",
+                        "irradiance", "airmass"});
+    numbers(*sun, {"elevation_deg", "azimuth_deg", "diameter_deg", "temperature_k", "irradiance", "airmass"});
+    integers(*sun, {{"samples", 4096}});
+    if (auto v = sun->find("spectrum")) v->choice<int>({{"blackbody", 0}, {"flat", 1}});
+  }
+  const Node rain = root.member("rain");
+  rain.expect_object({"box_min", "box_max", "march_steps", "populations"});
+  rain.member("box_min").vec3();
+  rain.member("box_max").vec3();
+  integers(rain, {{"march_steps", 100000}});
+  const Node populations = rain.member("populations");
+  if (populations.array_size() == 0) populations.fail("expected at least one population");
+  for (const Node& p : populations.elements()) check_population(p);
+  if (auto bg = root.find("background")) {
+    bg->expect_object({"sky", "ground"});
+    if (auto v = bg->find("sky")) check_background(*v, true);
+    if (auto v = bg->find("ground")) check_background(*v, false);
+  }
+  if (auto tables = root.find("tables")) {
+    tables->expect_object({"wavelengths", "theta", "phi_step_deg", "grid", "max_bounces"});
+    if (auto v = tables->find("wavelengths")) sweep::check_axis(*v);
+    if (auto v = tables->find("theta")) sweep::check_axis(*v);
+    numbers(*tables, {"phi_step_deg"});
+    integers(*tables, {{"grid", 8192}, {"max_bounces", 15}});
+  }
+}
+
+arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::Locked& locked) {
+  const json::Document doc = json::Document::from_file(path);
+  check_scene(doc.root());
+  auto scene = std::make_unique<arcus_scene_s>(ctx, "rainbow");
+  const auto name = doc.root().find("name");
+  scene->name = name ? name->string() : "";
+  if (auto v = doc.root().find("description")) scene->description = v->string();
+  scene->document = doc.dump();
+  locked([&] { retain_context(ctx); });  // the scene's reference
+  return scene.release();
+}
+
+// "rain" before "camera": rainbow scenes have a camera too (render scenes never rain).
+const scene::LoaderEntry kLoader("rainbow", load, "rain", /*precedence=*/1);
+
+}  // namespace
+}  // namespace arcus::rainbow
