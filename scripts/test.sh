@@ -2,7 +2,8 @@
 # Installs what is missing, builds, and runs every test: the ctest suites (C/C++), the
 # physics suite again in the one-ray-per-work-item layout GPUs get, the pytest suite,
 # then all of them again under AddressSanitizer + UndefinedBehaviorSanitizer, and the
-# scene reader's fuzzer for a minute.  Exits non-zero when anything fails.  CI runs this.
+# fuzzers of the scene, image and mesh readers for a minute each.  Exits non-zero when
+# anything fails.  CI runs this.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 start=$SECONDS
@@ -22,7 +23,8 @@ pytest_rc=$?
 # The library, its tests and pytest against it, built with ASan + UBSan: any report fails.
 bash scripts/sanitize.sh
 sanitize_rc=$?
-# libFuzzer on the scene reader: the regression inputs, then 60 s of fuzzing.
+# libFuzzer on the readers of untrusted files (scenes, images, meshes): the regression
+# inputs, then 60 s of fuzzing each.
 bash tests/fuzz/run_fuzz.sh 60
 fuzz_rc=$?
 echo "ctest exit $ctest_rc, ctest (one ray per work-item) exit $scalar_rc, pytest exit $pytest_rc," \

@@ -84,6 +84,7 @@ Mesh load_mesh(const std::string& path) {
   om.request_vertex_texcoords2D();
   CountingImporter importer(om);
   OpenMesh::IO::Options options = OpenMesh::IO::Options::VertexTexCoord;
+  if (declared.binary) options += OpenMesh::IO::Options::Binary;  // from a file OpenMesh sees it by the size
   std::istringstream in(bytes, std::ios::binary);
   if (!OpenMesh::IO::IOManager().read(in, ext.substr(1), importer, options))
     fail(ARCUS_ERROR_INVALID_ARGUMENT, path + ": not a readable " + ext.substr(1) + " mesh");
@@ -108,7 +109,8 @@ Mesh load_mesh(const std::string& path) {
       mesh.positions.push_back(p[k]);
     }
   }
-  if (options.vertex_has_texcoord()) {
+  // STL has no texture coordinates, but OpenMesh leaves the option as asked.
+  if (options.vertex_has_texcoord() && ext != ".stl") {
     mesh.uvs.reserve(2 * om.n_vertices());
     for (const auto v : om.vertices()) {
       const OpenMesh::Vec2d& t = om.texcoord2D(v);

@@ -18,8 +18,10 @@ struct Mesh {
   size_t triangle_count() const { return triangles.size() / 3; }
 };
 
-// Reads `path` (by extension, case-insensitive: .obj .ply .off .stl); polygons are
-// triangulated as fans.  A missing, unreadable or not-regular file is ARCUS_ERROR_IO; an
+// Reads `path` (by extension, case-insensitive: .obj .ply .off .stl; PLY and STL text or
+// binary, OFF text only); polygons are triangulated as fans.  The file is scanned before
+// OpenMesh parses it (geometry/mesh_scan.h): what OpenMesh would misread is refused with
+// the line.  A missing, unreadable or not-regular file is ARCUS_ERROR_IO; an
 // unknown extension, a file OpenMesh cannot parse, a mesh without faces or a
 // non-finite vertex is ARCUS_ERROR_INVALID_ARGUMENT; every message names the file.
 // Zero-area triangles are kept (the traversal never hits them), except faces that

@@ -163,17 +163,30 @@ Declared scan_obj(const std::string& path, string_view text) {
     }
     if (v > kMaxCount || faces > kMaxCount) refuse_line(path, lines.number(), "more than 2^31 - 1 vertices or faces");
   }
-  return {v, faces};
+  return {v, faces, false};
 }
 
 // ---- PLY --------------------------------------------------------------------------------
+
+struct PlyProperty {
+  bool list;
+  unsigned count_size;  // a list's count: bytes (binary)
+  bool count_float;     // a count type of float or double (nonsense, refused)
+  unsigned size;        // the value's (a list's items') bytes
+  bool is_float;        // float or double: text tokens are decimals, else integers
+};
 
 struct PlyElement {
   std::string name;
   uint64_t count;
   uint64_t min_bytes = 0;  // per element: binary bytes, or text tokens
   size_t properties = 0;
+  std::vector<PlyProperty> props;
 };
+
+// The most items a list (a face's corners) may have: OpenMesh makes room for a list's
+// count before reading it, so a count of 2^31 from a damaged file is 16 GB.
+constexpr uint64_t kMaxListItems = 65536;
 
 // Bytes of a PLY scalar type, or 0 for no such type.
 unsigned ply_size(string_view type) {
@@ -188,22 +201,100 @@ unsigned ply_size(string_view type) {
   return 0;
 }
 
+// Whether a PLY header says binary_big_endian.
+bool format_big_endian(string_view text) {
+  const size_t at = text.substr(0, kMaxHeaderBytes).find("binary_big_endian");
+  return at != string_view::npos;
+}
+
+// A text PLY's body, token by token as OpenMesh reads it: every value a number of its
+// type, every list's count an integer of at most kMaxListItems.  (OpenMesh read on after
+// a token it could not parse, with a list count it had not read: 3 GB for one face.)
+void scan_ply_text(const std::string& path, string_view body, const std::vector<PlyElement>& elements) {
+  size_t pos = 0;
+  auto token = [&](const PlyElement& e, uint64_t item) {
+    while (pos < body.size() && std::isspace(static_cast<unsigned char>(body[pos]))) ++pos;
+    size_t end = pos;
+    while (end < body.size() && !std::isspace(static_cast<unsigned char>(body[end]))) ++end;
+    if (end == pos)
+      refuse(path, "the body ends inside " + e.name + " " + std::to_string(item) + " of " + std::to_string(e.count));
+    const string_view t = body.substr(pos, end - pos);
+    pos = end;
+    return t;
+  };
+  auto value = [&](const PlyElement& e, uint64_t item, bool is_float) {
+    const string_view t = token(e, item);
+    long long ignored;
+    if (is_float ? !single_number(t) : !integer(t, &ignored))
+      refuse(path, e.name + " " + std::to_string(item) + ": " + shown(t) + " is not " +
+                       (is_float ? "a finite number within single precision" : "an integer"));
+  };
+  for (const PlyElement& e : elements)
+    for (uint64_t i = 0; i < e.count; ++i)
+      for (const PlyProperty& p : e.props) {
+        if (!p.list) {
+          value(e, i, p.is_float);
+          continue;
+        }
+        long long n = -1;
+        const string_view t = token(e, i);
+        if (!integer(t, &n) || n < 0 || uint64_t(n) > kMaxListItems)
+          refuse(path, e.name + " " + std::to_string(i) + ": " + shown(t) + " is not a list length of 0 to " +
+                           std::to_string(kMaxListItems));
+        for (long long k = 0; k < n; ++k) value(e, i, p.is_float);
+      }
+}
+
+// A binary PLY's body, value by value: lists' counts within kMaxListItems and every
+// element within the file.
+void scan_ply_binary(const std::string& path, string_view body, const std::vector<PlyElement>& elements,
+                     bool big_endian) {
+  size_t pos = 0;
+  auto need = [&](const PlyElement& e, uint64_t item, uint64_t bytes) {
+    if (bytes > body.size() - pos)
+      refuse(path, "the body ends inside " + e.name + " " + std::to_string(item) + " of " + std::to_string(e.count));
+  };
+  for (const PlyElement& e : elements)
+    for (uint64_t i = 0; i < e.count; ++i)
+      for (const PlyProperty& p : e.props) {
+        if (!p.list) {
+          need(e, i, p.size);
+          pos += p.size;
+          continue;
+        }
+        need(e, i, p.count_size);
+        uint64_t n = 0;
+        for (unsigned b = 0; b < p.count_size; ++b) {
+          const unsigned char byte = static_cast<unsigned char>(body[pos + (big_endian ? b : p.count_size - 1 - b)]);
+          n = n << 8 | byte;
+        }
+        // A signed count with its top bit set is negative: refused like a huge one.
+        pos += p.count_size;
+        if (n > kMaxListItems)
+          refuse(path, e.name + " " + std::to_string(i) + ": a list of " + std::to_string(n) + " items, more than " +
+                           std::to_string(kMaxListItems));
+        need(e, i, n * p.size);
+        pos += n * p.size;
+      }
+}
+
 Declared scan_ply(const std::string& path, string_view text) {
-  const size_t end = text.substr(0, kMaxHeaderBytes).find("end_header");
   if (text.substr(0, 4) != "ply\n" && text.substr(0, 5) != "ply\r\n") refuse(path, "not a PLY file (no 'ply' line)");
-  if (end == string_view::npos)
-    refuse(path, "the PLY header has no 'end_header' line within its first " + std::to_string(kMaxHeaderBytes / 1024) +
-                     " KiB");
-  size_t body = text.find('\n', end);
-  body = body == string_view::npos ? text.size() : body + 1;
-  Lines lines(text.substr(0, body), 0);
+  // The header ends at a line whose word is "end_header" (OpenMesh reads it word by word
+  // and loops for ever without one), within kMaxHeaderBytes.
+  Lines lines(text.substr(0, kMaxHeaderBytes), 0);
   std::vector<string_view> t;
   std::vector<PlyElement> elements;
-  bool binary = false, format = false;
-  while (lines.next(&t)) {
-    if (t.empty() || t[0] == "ply" || t[0] == "comment" || t[0] == "obj_info" || t[0] == "end_header") continue;
-    if (t[0] == "format") {
-      if (t.size() != 3 || (t[1] != "ascii" && t[1] != "binary_little_endian" && t[1] != "binary_big_endian"))
+  bool binary = false, format = false, ended = false;
+  while (!ended && lines.next(&t)) {
+    if (t.empty() || t[0] == "ply" || t[0] == "comment" || t[0] == "obj_info") continue;
+    if (t[0] == "end_header") {
+      if (t.size() != 1) refuse_line(path, lines.number(), "expected 'end_header' alone on its line");
+      ended = true;
+    } else if (t[0] == "format") {
+      // A token OpenMesh cannot read as a number (the version) sends its header loop round for ever.
+      if (t.size() != 3 || (t[1] != "ascii" && t[1] != "binary_little_endian" && t[1] != "binary_big_endian") ||
+          (t[2] != "1.0" && t[2] != "1"))
         refuse_line(path, lines.number(), "expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
       binary = t[1] != "ascii";
       format = true;
@@ -215,12 +306,16 @@ Declared scan_ply(const std::string& path, string_view text) {
     } else if (t[0] == "property") {
       if (elements.empty()) refuse_line(path, lines.number(), "a property before any element");
       PlyElement& e = elements.back();
+      auto is_float = [](string_view type) { return type.find("float") == 0 || type == "double"; };
       if (t.size() == 5 && t[1] == "list") {
         const unsigned count_size = ply_size(t[2]);
-        if (!count_size || !ply_size(t[3])) refuse_line(path, lines.number(), "unknown list type in " + shown(t[2]));
+        if (!count_size || !ply_size(t[3]) || is_float(t[2]))
+          refuse_line(path, lines.number(), "unknown or non-integer list count type in " + shown(t[2]));
         e.min_bytes += binary ? count_size : 1;  // a list holds at least its count
+        e.props.push_back({true, count_size, false, ply_size(t[3]), is_float(t[3])});
       } else if (t.size() == 3 && ply_size(t[1])) {
         e.min_bytes += binary ? ply_size(t[1]) : 1;
+        e.props.push_back({false, 0, false, ply_size(t[1]), is_float(t[1])});
       } else {
         refuse_line(path, lines.number(), "expected 'property <type> <name>' or 'property list <type> <type> <name>'");
       }
@@ -229,6 +324,10 @@ Declared scan_ply(const std::string& path, string_view text) {
       refuse_line(path, lines.number(), "unknown header keyword " + shown(t[0]));
     }
   }
+  if (!ended)
+    refuse(path, "the PLY header has no 'end_header' line within its first " + std::to_string(kMaxHeaderBytes / 1024) +
+                     " KiB");
+  const size_t body = lines.offset();
   if (!format) refuse(path, "the PLY header has no 'format' line");
   // What the declared elements need at least: a text token takes a character and a
   // separator.
@@ -239,51 +338,59 @@ Declared scan_ply(const std::string& path, string_view text) {
     if (e.name == "vertex") d.vertices = e.count;
     if (e.name == "face") d.faces = e.count;
   }
-  const size_t held = text.size() - body;
+  const size_t held = text.size() > body ? text.size() - body : 0;
   if (needed > double(held))
     refuse(path, "the header declares " + std::to_string(d.vertices) + " vertices and " + std::to_string(d.faces) +
                      " faces, which need at least " + std::to_string(uint64_t(needed)) + " bytes, but " +
                      std::to_string(held) + " follow it");
+  if (binary)
+    scan_ply_binary(path, text.substr(std::min(body, text.size())), elements, format_big_endian(text));
+  else
+    scan_ply_text(path, text.substr(std::min(body, text.size())), elements);
   return d;
 }
 
 // ---- OFF --------------------------------------------------------------------------------
 
+// OFF as OpenMesh reads it: the keyword alone on the first line, the counts on the next,
+// then the vertices and the faces, no comments.  (It reads counts on the keyword's line,
+// comments, colours and normals differently from the format's description: a comment
+// before the counts became a count of 32547 faces, counts on the first line were skipped
+// and the next line's number taken, one of 3e80 vertices.)
 Declared scan_off(const std::string& path, string_view text) {
-  Lines lines(text, '#');
+  Lines lines(text, 0);
   std::vector<string_view> t;
-  // The keyword ([ST][C][N][4][n]OFF), on a line of its own or before the counts.
-  while (lines.next(&t) && t.empty()) {
-  }
-  if (t.empty() || t[0].size() < 3 || t[0].substr(t[0].size() - 3) != "OFF") refuse(path, "not an OFF file (no 'OFF')");
-  if (t[0].find('n') != string_view::npos || t[0].find('4') != string_view::npos)
-    refuse(path, "only 3-D OFF files are read (" + shown(t[0]) + ")");
-  const bool binary = t.size() > 1 && t[1] == "BINARY";
-  if (binary) refuse(path, "binary OFF files are not read; write it as text");
-  size_t skip = 1;
-  if (t.size() <= 1) {
-    while (lines.next(&t) && t.empty()) {
-    }
-    skip = 0;
-  }
+  auto next = [&](const char* what) {
+    while (lines.next(&t))
+      if (!t.empty()) {
+        if (t[0][0] == '#') refuse_line(path, lines.number(), "comments in OFF files are not read (OpenMesh misreads them)");
+        return;
+      }
+    refuse(path, std::string("the file ends before ") + what);
+  };
+  next("the 'OFF' line");
+  if (t.size() != 1 || t[0] != "OFF")
+    refuse_line(path, lines.number(),
+                "expected 'OFF' alone on the first line (binary, coloured or n-dimensional OFF files are not read)");
+  next("the counts");
   long long nv = -1, nf = -1, ne = 0;
-  if (t.size() < skip + 2 || !integer(t[skip], &nv) || !integer(t[skip + 1], &nf) ||
-      (t.size() > skip + 2 && !integer(t[skip + 2], &ne)) || nv < 0 || nf < 0 || uint64_t(nv) > kMaxCount ||
-      uint64_t(nf) > kMaxCount)
+  if (t.size() != 3 || !integer(t[0], &nv) || !integer(t[1], &nf) || !integer(t[2], &ne) || nv < 0 || nf < 0 ||
+      uint64_t(nv) > kMaxCount || uint64_t(nf) > kMaxCount)
     refuse_line(path, lines.number(), "expected the counts 'vertices faces edges' (0 to 2^31 - 1)");
-  // Every vertex line: three finite coordinates (then optional colour, normal, texture).
-  for (long long i = 0; i < nv;) {
-    if (!lines.next(&t)) refuse(path, "declares " + std::to_string(nv) + " vertices but ends after " + std::to_string(i));
-    if (t.empty()) continue;
+  // What the counts need at least ("0 0 0" a vertex, "3 0 0 0" a face): a file too short
+  // for them is refused before they are read one by one.
+  if (double(nv) * 6 + double(nf) * 8 > double(text.size()))
+    refuse_line(path, lines.number(), "declares " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
+                                          " faces, more than the file can hold");
+  for (long long i = 0; i < nv; ++i) {
+    next("the last vertex");
+    if (t.size() != 3) refuse_line(path, lines.number(), "a vertex is 'x y z'");
     require_numbers(path, lines, t, 0, 3, "vertex");
-    ++i;
   }
-  // Every face line: k >= 3, then k indices of existing vertices (then an optional colour).
-  for (long long i = 0; i < nf;) {
-    if (!lines.next(&t)) refuse(path, "declares " + std::to_string(nf) + " faces but ends after " + std::to_string(i));
-    if (t.empty()) continue;
+  for (long long i = 0; i < nf; ++i) {
+    next("the last face");
     long long k = 0;
-    if (!integer(t[0], &k) || k < 3 || t.size() < size_t(k) + 1)
+    if (!integer(t[0], &k) || k < 3 || t.size() != size_t(k) + 1)
       refuse_line(path, lines.number(), "a face is 'k i1 ... ik' with k >= 3 vertex indices");
     for (long long c = 1; c <= k; ++c) {
       long long index = -1;
@@ -291,9 +398,8 @@ Declared scan_off(const std::string& path, string_view text) {
         refuse_line(path, lines.number(), "face: " + shown(t[c]) + " is not the index of one of the " +
                                               std::to_string(nv) + " vertices");
     }
-    ++i;
   }
-  return {size_t(nv), size_t(nf)};
+  return {size_t(nv), size_t(nf), false};
 }
 
 // ---- STL --------------------------------------------------------------------------------
@@ -309,7 +415,7 @@ Declared scan_stl(const std::string& path, string_view text) {
         std::memcpy(&x, text.data() + 84 + 50 * size_t(t) + 12 + 4 * k, 4);
         if (!std::isfinite(x)) refuse(path, "triangle " + std::to_string(t) + " has a non-finite vertex");
       }
-    return {3 * size_t(count), count};
+    return {3 * size_t(count), count, true};
   }
   Lines lines(text, 0);
   std::vector<string_view> t;
@@ -325,7 +431,7 @@ Declared scan_stl(const std::string& path, string_view text) {
   }
   if (vertices != 3 * facets)
     refuse(path, std::to_string(facets) + " facets hold " + std::to_string(vertices) + " vertices, not three each");
-  return {vertices, facets};
+  return {vertices, facets, false};
 }
 
 }  // namespace

@@ -16,6 +16,7 @@ namespace arcus::geometry {
 struct Declared {
   size_t vertices = 0;  // vertices in the file
   size_t faces = 0;     // faces (polygons or STL triangles) in the file
+  bool binary = false;  // a binary STL (OpenMesh cannot tell from a stream)
 };
 
 // Scans `bytes`, the contents of the mesh file `path` of extension `ext` (".obj",

@@ -125,14 +125,19 @@ TEST(Meshes, EveryFormatRoundTripsAndPolygonsAreTriangulated) {
     return triangles_of(m);
   };
   ASSERT_EQ(expected(poly).size(), 6u);
-  for (const char* ext : {"obj", "ply", "off", "stl", "OBJ"}) {
-    const std::string path = dir.path() + "/pyramid." + ext;
-    const bool stl = std::string(ext) == "stl";  // STL holds triangles only
-    ASSERT_TRUE(OpenMesh::IO::write_mesh(stl ? tri : poly, path)) << path;
-    const Mesh got = load_mesh(path);
-    EXPECT_EQ(got.source, path);
-    EXPECT_EQ(triangles_of(got), expected(stl ? tri : poly)) << ext;
-  }
+  for (const char* ext : {"obj", "ply", "off", "stl", "OBJ"})
+    for (const bool binary : {false, true}) {
+      if (binary && std::string(ext) != "ply" && std::string(ext) != "stl") continue;  // binary OFF is refused
+      const std::string path = dir.path() + "/pyramid." + ext;
+      const bool stl = std::string(ext) == "stl";  // STL holds triangles only
+      ASSERT_TRUE(OpenMesh::IO::write_mesh(stl ? tri : poly, path,
+                                           binary ? OpenMesh::IO::Options::Binary : OpenMesh::IO::Options::Default))
+          << path;
+      const Mesh got = load_mesh(path);
+      EXPECT_EQ(got.source, path);
+      EXPECT_EQ(triangles_of(got), expected(stl ? tri : poly)) << ext << (binary ? " binary" : " text");
+      if (stl) EXPECT_TRUE(got.uvs.empty()) << "STL has no texture coordinates";
+    }
 }
 
 TEST(Meshes, BadFilesNameTheFile) {

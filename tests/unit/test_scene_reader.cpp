@@ -808,7 +808,7 @@ TEST(JsonReader, MessageHelpers) {
 TEST(FuzzSeeds, AllParse) {
   // Seeds that no longer parse would start the fuzzer far from the schema.
   int n = 0;
-  for (const auto& entry : fs::directory_iterator(fs::path(kSource) / "tests" / "fuzz" / "seeds")) {
+  for (const auto& entry : fs::directory_iterator(fs::path(kSource) / "tests" / "fuzz" / "scene" / "seeds")) {
     ++n;
     SCOPED_TRACE(entry.path().string());
     EXPECT_NO_THROW(parse_scene_file(entry.path().string()));
@@ -816,10 +816,10 @@ TEST(FuzzSeeds, AllParse) {
   EXPECT_GE(n, 3);
 }
 
-// Inputs that once crashed or gave a bad error (tests/fuzz/regressions).
+// Inputs that once crashed or gave a bad error (tests/fuzz/scene/regressions).
 
 TEST(FuzzRegressions, ParseOrFailCleanly) {
-  const fs::path dir = fs::path(kSource) / "tests" / "fuzz" / "regressions";
+  const fs::path dir = fs::path(kSource) / "tests" / "fuzz" / "scene" / "regressions";
   ASSERT_TRUE(fs::is_directory(dir)) << dir;
   int n = 0;
   for (const auto& entry : fs::directory_iterator(dir)) {
