@@ -12,6 +12,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <string>
@@ -395,6 +396,28 @@ TEST(ImageIoHostile, NanAndInfiniteTexelsAreRefusedNamingThePixel) {
   // The largest finite float is a colour like any other.
   write_pfm(path, 2, 2, [](int, int, int) { return 3.0e38f; });
   EXPECT_EQ(read_image(path).pixels[0], 3.0e38f);
+}
+
+TEST(ImageIoHostile, TheFuzzersRegressionInputsReadOrFailCleanly) {
+  // tests/fuzz/image/regressions (the first byte picks the extension: fuzz_image.cpp).
+  const char* const extensions[] = {".png", ".exr", ".hdr", ".pfm", ".tif", ".jpg", ".bmp", ".tga", ".ppm"};
+  TempDir dir;
+  int n = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(ARCUS_SOURCE_DIR "/tests/fuzz/image/regressions")) {
+    std::ifstream in(entry.path(), std::ios::binary);
+    const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_FALSE(data.empty()) << entry.path();
+    const std::string path = dir.path() + "/input" + extensions[static_cast<unsigned char>(data[0]) % 9];
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << data.substr(1);
+    try {
+      const Image im = read_image(path);
+      for (float v : im.pixels) EXPECT_TRUE(std::isfinite(v)) << entry.path();
+    } catch (const arcus::Error& e) {
+      EXPECT_TRUE(contains(e.what(), path)) << e.what();
+    }
+    ++n;
+  }
+  EXPECT_GE(n, 4);
 }
 
 }  // namespace

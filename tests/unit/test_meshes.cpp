@@ -289,4 +289,29 @@ TEST(MeshesHostile, SpecialFilesAreRefusedWithoutBlocking) {
   EXPECT_NE(expect_error(dir.path() + "/zero.ply", ARCUS_ERROR_IO).find("character device"), std::string::npos);
 }
 
+TEST(MeshesHostile, TheFuzzersRegressionInputsLoadOrFailCleanlyAndQuickly) {
+  // tests/fuzz/mesh/regressions: each once hung OpenMesh, exhausted memory or was
+  // misread.  The first byte picks the extension, as in fuzz_mesh.cpp.
+  const char* const extensions[] = {".obj", ".ply", ".off", ".stl"};
+  TempDir dir;
+  int n = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(ARCUS_SOURCE_DIR "/tests/fuzz/mesh/regressions")) {
+    std::ifstream in(entry.path(), std::ios::binary);
+    const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_FALSE(data.empty()) << entry.path();
+    const std::string path = dir.path() + "/input" + extensions[static_cast<unsigned char>(data[0]) % 4];
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << data.substr(1);
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      const Mesh m = load_mesh(path);
+      for (uint32_t v : m.triangles) EXPECT_LT(v, m.vertex_count()) << entry.path();
+    } catch (const arcus::Error& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(path, 0), 0u) << e.what();
+    }
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0) << entry.path();
+    ++n;
+  }
+  EXPECT_GE(n, 10);
+}
+
 }  // namespace
