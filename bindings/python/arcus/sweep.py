@@ -542,6 +542,8 @@ class _Archive:
     @classmethod
     def load(cls, path):
         """Reads a file written by :meth:`save`."""
+        if not os.path.isfile(path):  # a FIFO would block the read for ever, a device never end
+            raise ArgumentError("path: %r is not a regular file (a saved sweep)" % (os.fspath(path),))
         try:
             with np.load(path, allow_pickle=False) as f:
                 arrays = {name: f[name] for name in f.files}
