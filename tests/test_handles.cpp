@@ -273,7 +273,9 @@ TEST(Threads, AThreadWhoseSignalStackTheKernelCompilerReplacedExitsCleanly) {
   // itself (so the test fails the same way on a CPU with AMX, whose larger stacks LLVM
   // leaves alone), compiles a kernel with both program caches off, and exits.
   setenv("ARCUS_CACHE_DIR", "off", 1);
-  setenv("POCL_KERNEL_CACHE", "0", 1);  // read when PoCL starts: this process has no context yet
+  // Read when PoCL starts: ctest runs each test in a process of its own
+  // (gtest_discover_tests), so none has started yet.
+  setenv("POCL_KERNEL_CACHE", "0", 1);
   arcus_status status = ARCUS_ERROR_INVALID_ARGUMENT;
   std::thread t([&] {
     stack_t small{};

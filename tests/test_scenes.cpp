@@ -124,6 +124,21 @@ TEST_F(Scenes, BadFilesFailWithTheFileAndTheKeyPath) {
   EXPECT_EQ(arcus_scene_get_name(reinterpret_cast<arcus_scene_t*>(ctx()), &name), ARCUS_ERROR_INVALID_ARGUMENT);
 }
 
+TEST_F(Scenes, ADocumentWithTwoEnginesMarkersIsRefusedNotGuessed) {
+  // Which engine read it depended on the order the engines registered in.
+  const auto both = load_error(temp_file("both", R"({"name": "x", "camera": {}, "water": {}})"));
+  EXPECT_EQ(both.first, ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_TRUE(contains_ci(both.second.c_str(), "which kind of scene is it")) << both.second;
+  // A rainbow scene has a camera too: "rain" decides.
+  arcus_scene_t* scene = nullptr;
+  ASSERT_EQ(arcus_scene_load(ctx(), scene_path("rainbow/double_bow.json").c_str(), &scene), ARCUS_SUCCESS)
+      << last_error();
+  ScenePtr guard(scene);
+  const char* engine = nullptr;
+  ASSERT_EQ(arcus_scene_get_engine(scene, &engine), ARCUS_SUCCESS);
+  EXPECT_STREQ(engine, "rainbow");
+}
+
 TEST_F(Scenes, ScenesAndRequestsBeyondTheBoundsAreRefusedBeforeAllocating) {
   // A scene file is read whole: 1.5 GB of NUL bytes took 1.7 GB and 5 s.  Now its size is
   // held to ARCUS_MAX_SCENE_BYTES (64 MiB) first; a sparse file stands in for a big one.

@@ -1,6 +1,6 @@
 // A cache directory that only this user can write, as ccache, pip and PoCL keep theirs:
 // what is read back from it is run (compiled programs), so an entry someone else could
-// have written is never trusted.  docs/caches.md states the model.
+// have written is never trusted.  docs/security.md states the model.
 //   - The directory is created 0700 (whatever the umask) and used only when it is owned
 //     by this user and not writable by group or others; otherwise a warning is printed
 //     once per directory and the cache is off.

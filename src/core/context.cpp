@@ -24,8 +24,9 @@ void release_object(Handle* object) {
   if (!object->drop()) return;
   arcus_context_t* ctx = object->owner();
   if (holds_lock(ctx)) {
-    // The last reference went inside a call that holds the lock (a call's own reference
-    // to an object found under it): the lock is this thread's already.
+    // No call path drops a last reference under its context's lock today (calls take
+    // and drop theirs outside it); were one to, taking the lock again would throw from
+    // a destructor.  The lock is this thread's already.
     delete object;
   } else {
     ContextLock lock(ctx);

@@ -63,7 +63,7 @@ std::string bytes_text(double bytes) {
   int u = 0;
   while (bytes >= 1024 && u < 6) bytes /= 1024, ++u;
   char buf[48];
-  std::snprintf(buf, sizeof buf, u ? "%.3g %s" : "%.0f %s", bytes, units[u]);
+  std::snprintf(buf, sizeof buf, u ? "%.4g %s" : "%.0f %s", bytes, units[u]);
   return buf;
 }
 

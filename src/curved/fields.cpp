@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/format.h"
+#include "core/limits.h"
 
 namespace arcus::curved {
 namespace {
@@ -301,6 +302,7 @@ std::vector<double> read_grid_file(const char* path, int32_t type, size_t count)
     fail(ARCUS_ERROR_IO, name + " holds " + std::to_string(size) + " bytes, but " + std::to_string(count) +
                              " values of " + std::to_string(width) + " bytes need " + std::to_string(count * width));
   ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+  limits::require_host_memory(8.0 * double(count), name + ": " + std::to_string(count) + " values");
   std::vector<double> values(count);
   // Read straight into the values (float32: through a small buffer), so the file is
   // never held twice.

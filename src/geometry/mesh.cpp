@@ -91,8 +91,11 @@ Mesh load_mesh(const std::string& path) {
   if (importer.bad_faces)
     fail(ARCUS_ERROR_INVALID_ARGUMENT, path + ": " + std::to_string(importer.bad_faces) +
                                            " faces name vertices that do not exist");
-  // STL vertices are merged as they are read, so only its triangles are counted.
-  if ((ext != ".stl" && importer.vertices != declared.vertices) || importer.faces != declared.faces)
+  // STL vertices are merged as they are read, so only its triangles are counted, and a
+  // triangle whose corners merged (no area) is never handed over: at most the file's.
+  const bool stl = ext == ".stl";
+  if ((!stl && (importer.vertices != declared.vertices || importer.faces != declared.faces)) ||
+      (stl && importer.faces > declared.faces))
     fail(ARCUS_ERROR_INVALID_ARGUMENT, path + ": OpenMesh read " + std::to_string(importer.vertices) + " vertices and " +
                                            std::to_string(importer.faces) + " faces of the " +
                                            std::to_string(declared.vertices) + " and " +

@@ -25,7 +25,8 @@ struct Mesh {
 // unknown extension, a file OpenMesh cannot parse, a mesh without faces or a
 // non-finite vertex is ARCUS_ERROR_INVALID_ARGUMENT; every message names the file.
 // Zero-area triangles are kept (the traversal never hits them), except faces that
-// repeat a vertex index, which OpenMesh's importer drops.  OpenMesh's readers (all four
+// repeat a vertex index, and STL triangles two of whose corners coincide, which OpenMesh
+// drops.  OpenMesh's readers (all four
 // formats, PLY's double properties included) hand coordinates over as float, so
 // positions read from files are float values; everything after reading is double.
 Mesh load_mesh(const std::string& path);

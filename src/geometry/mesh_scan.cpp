@@ -201,12 +201,6 @@ unsigned ply_size(string_view type) {
   return 0;
 }
 
-// Whether a PLY header says binary_big_endian.
-bool format_big_endian(string_view text) {
-  const size_t at = text.substr(0, kMaxHeaderBytes).find("binary_big_endian");
-  return at != string_view::npos;
-}
-
 // A text PLY's body, token by token as OpenMesh reads it: every value a number of its
 // type, every list's count an integer of at most kMaxListItems.  (OpenMesh read on after
 // a token it could not parse, with a list count it had not read: 3 GB for one face.)
@@ -285,7 +279,7 @@ Declared scan_ply(const std::string& path, string_view text) {
   Lines lines(text.substr(0, kMaxHeaderBytes), 0);
   std::vector<string_view> t;
   std::vector<PlyElement> elements;
-  bool binary = false, format = false, ended = false;
+  bool binary = false, big_endian = false, format = false, ended = false;
   while (!ended && lines.next(&t)) {
     if (t.empty() || t[0] == "ply" || t[0] == "comment" || t[0] == "obj_info") continue;
     if (t[0] == "end_header") {
@@ -297,6 +291,7 @@ Declared scan_ply(const std::string& path, string_view text) {
           (t[2] != "1.0" && t[2] != "1"))
         refuse_line(path, lines.number(), "expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
       binary = t[1] != "ascii";
+      big_endian = t[1] == "binary_big_endian";
       format = true;
     } else if (t[0] == "element") {
       long long count = -1;
@@ -329,6 +324,11 @@ Declared scan_ply(const std::string& path, string_view text) {
                      " KiB");
   const size_t body = lines.offset();
   if (!format) refuse(path, "the PLY header has no 'format' line");
+  // Every element takes bytes, so the file's size bounds the counts below; one without
+  // properties would take none (OpenMesh looped over a million such vertices).
+  for (const PlyElement& e : elements)
+    if (e.count > 0 && e.props.empty())
+      refuse(path, "element " + e.name + " has " + std::to_string(e.count) + " items but no properties");
   // What the declared elements need at least: a text token takes a character and a
   // separator.
   double needed = 0;
@@ -344,7 +344,7 @@ Declared scan_ply(const std::string& path, string_view text) {
                      " faces, which need at least " + std::to_string(uint64_t(needed)) + " bytes, but " +
                      std::to_string(held) + " follow it");
   if (binary)
-    scan_ply_binary(path, text.substr(std::min(body, text.size())), elements, format_big_endian(text));
+    scan_ply_binary(path, text.substr(std::min(body, text.size())), elements, big_endian);
   else
     scan_ply_text(path, text.substr(std::min(body, text.size())), elements);
   return d;
@@ -353,7 +353,8 @@ Declared scan_ply(const std::string& path, string_view text) {
 // ---- OFF --------------------------------------------------------------------------------
 
 // OFF as OpenMesh reads it: the keyword alone on the first line, the counts on the next,
-// then the vertices and the faces, no comments.  (It reads counts on the keyword's line,
+// then the vertices ("x y z") and the faces ("k i1 ... ik"), no comments, no colours (with
+// a colour after a face OpenMesh took the next face's corners wrong).  (It reads counts on the keyword's line,
 // comments, colours and normals differently from the format's description: a comment
 // before the counts became a count of 32547 faces, counts on the first line were skipped
 // and the next line's number taken, one of 3e80 vertices.)

@@ -3,10 +3,8 @@
 // engine "rainbow", whose document arcus.rainbow.render turns into tables and a sky.
 // The schema is checked here (keys, types, integers); the physics' ranges (a sun above
 // the horizon, positive sizes) are checked where the values are used.
-#include <memory>
 #include <string>
 
-#include "core/context.h"
 #include "curved/scene_desc.h"  // parse_name
 #include "scene/json_reader.h"
 #include "scene/scene.h"
@@ -16,16 +14,6 @@ namespace arcus::rainbow {
 namespace {
 
 using json::Node;
-
-void numbers(const Node& n, std::initializer_list<const char*> keys) {
-  for (const char* k : keys)
-    if (auto v = n.find(k)) v->number();
-}
-
-void integers(const Node& n, std::initializer_list<std::pair<const char*, uint64_t>> keys) {
-  for (const auto& [k, max] : keys)
-    if (auto v = n.find(k)) v->integer(max);
-}
 
 void pair_of_numbers(const Node& n) {
   const std::vector<Node> e = n.elements();
@@ -46,8 +34,8 @@ void check_population(const Node& p) {
     if (auto v = p.find("orientation")) v->choice<int>({{"random", 0}, {"horizontal", 1}});
     p.member("size").number();
     p.member("density").number();
-    numbers(p, {"tilt_deg"});
-    integers(p, {{"orientations", 10000000}, {"seed", uint64_t(1) << 31}});
+    p.check_numbers({"tilt_deg"});
+    p.check_integers({{"orientations", 10000000}, {"seed", uint64_t(1) << 31}});
     return;
   }
   const auto distribution = p.find("distribution");
@@ -55,7 +43,7 @@ void check_population(const Node& p) {
     if (shape == Shape::sphere) {
       p.expect_object({"shape", "radius", "density", "method", "nonspherical_above_mm"});
       p.member("radius").number();
-      numbers(p, {"nonspherical_above_mm"});
+      p.check_numbers({"nonspherical_above_mm"});
     } else {
       p.expect_object({"shape", "diameter", "density"});
       p.member("diameter").number();
@@ -74,11 +62,11 @@ void check_population(const Node& p) {
                        "nonspherical_above_mm"});
       p.member("mode_radius").number();
       p.member("total_density").number();
-      numbers(p, {"mu"});
+      p.check_numbers({"mu"});
       if (auto v = p.find("radius_range")) pair_of_numbers(*v);
     }
-    integers(p, {{"bins", 200}});
-    numbers(p, {"nonspherical_above_mm"});
+    p.check_integers({{"bins", 200}});
+    p.check_numbers({"nonspherical_above_mm"});
   }
   if (auto v = p.find("method")) v->choice<int>({{"rays", 0}, {"mie", 1}});
 }
@@ -88,12 +76,12 @@ void check_background(const Node& b, bool image_allowed) {
   if (image_allowed && b.find("image")) {
     b.expect_object({"image", "scale"});
     if (b.member("image").string().empty()) b.member("image").fail("expected a file name");
-    numbers(b, {"scale"});
+    b.check_numbers({"scale"});
     return;
   }
   b.expect_object({"spectrum", "radiance"});
   if (auto v = b.find("spectrum")) v->choice<int>({{"flat", 0}, {"rayleigh", 1}});
-  numbers(b, {"radiance"});
+  b.check_numbers({"radiance"});
 }
 
 void check_scene(const Node& root) {
@@ -102,26 +90,26 @@ void check_scene(const Node& root) {
   if (auto v = root.find("description")) v->string();
   if (auto img = root.find("image")) {
     img->expect_object({"width", "height", "fov_deg", "exposure"});
-    integers(*img, {{"width", 16384}, {"height", 16384}});
-    numbers(*img, {"fov_deg", "exposure"});
+    img->check_integers({{"width", 16384}, {"height", 16384}});
+    img->check_numbers({"fov_deg", "exposure"});
   }
   if (auto cam = root.find("camera")) {
     cam->expect_object({"position", "look_azimuth_deg", "look_elevation_deg"});
     if (auto v = cam->find("position")) v->vec3();
-    numbers(*cam, {"look_azimuth_deg", "look_elevation_deg"});
+    cam->check_numbers({"look_azimuth_deg", "look_elevation_deg"});
   }
   if (auto sun = root.find("sun")) {
     sun->expect_object({"elevation_deg", "azimuth_deg", "diameter_deg", "samples", "spectrum", "temperature_k",
                         "irradiance", "airmass"});
-    numbers(*sun, {"elevation_deg", "azimuth_deg", "diameter_deg", "temperature_k", "irradiance", "airmass"});
-    integers(*sun, {{"samples", 4096}});
+    sun->check_numbers({"elevation_deg", "azimuth_deg", "diameter_deg", "temperature_k", "irradiance", "airmass"});
+    sun->check_integers({{"samples", 4096}});
     if (auto v = sun->find("spectrum")) v->choice<int>({{"blackbody", 0}, {"flat", 1}});
   }
   const Node rain = root.member("rain");
   rain.expect_object({"box_min", "box_max", "march_steps", "populations"});
   rain.member("box_min").vec3();
   rain.member("box_max").vec3();
-  integers(rain, {{"march_steps", 100000}});
+  rain.check_integers({{"march_steps", 100000}});
   const Node populations = rain.member("populations");
   if (populations.array_size() == 0) populations.fail("expected at least one population");
   for (const Node& p : populations.elements()) check_population(p);
@@ -134,21 +122,13 @@ void check_scene(const Node& root) {
     tables->expect_object({"wavelengths", "theta", "phi_step_deg", "grid", "max_bounces"});
     if (auto v = tables->find("wavelengths")) sweep::check_axis(*v);
     if (auto v = tables->find("theta")) sweep::check_axis(*v);
-    numbers(*tables, {"phi_step_deg"});
-    integers(*tables, {{"grid", 8192}, {"max_bounces", 15}});
+    tables->check_numbers({"phi_step_deg"});
+    tables->check_integers({{"grid", 8192}, {"max_bounces", 15}});
   }
 }
 
 arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::Locked& locked) {
-  const json::Document doc = json::Document::from_file(path);
-  check_scene(doc.root());
-  auto scene = std::make_unique<arcus_scene_s>(ctx, "rainbow");
-  const auto name = doc.root().find("name");
-  scene->name = name ? name->string() : "";
-  if (auto v = doc.root().find("description")) scene->description = v->string();
-  scene->document = doc.dump();
-  locked([&] { retain_context(ctx); });  // the scene's reference
-  return scene.release();
+  return scene::document_scene(ctx, path, "rainbow", check_scene, locked);
 }
 
 // "rain" before "camera": rainbow scenes have a camera too (render scenes never rain).

@@ -284,6 +284,16 @@ Vec3 Node::vec3() const {
   return {e[0].number(), e[1].number(), e[2].number()};
 }
 
+void Node::check_numbers(std::initializer_list<const char*> keys) const {
+  for (const char* k : keys)
+    if (auto v = find(k)) v->number();
+}
+
+void Node::check_integers(std::initializer_list<std::pair<const char*, uint64_t>> keys) const {
+  for (const auto& [k, max] : keys)
+    if (auto v = find(k)) v->integer(max);
+}
+
 void Node::fail_choice(const std::string& got, const std::vector<const char*>& names) const {
   fail(quoted(got) + " is not one of " + join(names));
 }

@@ -83,6 +83,11 @@ class Node {
   std::string string() const;
   Vec3 vec3() const;  // [x, y, z] of numbers
 
+  // Schema checks of an object's optional members: each of `keys` that is present is a
+  // number (check_numbers), or an integer 0..max (check_integers).
+  void check_numbers(std::initializer_list<const char*> keys) const;
+  void check_integers(std::initializer_list<std::pair<const char*, uint64_t>> keys) const;
+
   // One of a fixed set of names, mapped to its value.
   template <class T>
   T choice(const std::vector<std::pair<const char*, T>>& options) const {

@@ -1,6 +1,7 @@
 #include "scene/scene.h"
 
 #include <exception>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -33,18 +34,40 @@ void register_loader(const char* engine, Loader loader, const char* marker, int 
   loaders().push_back({engine, marker, precedence, std::move(loader)});
 }
 
+arcus_scene_s* document_scene(arcus_context_t* ctx, const std::string& path, const char* engine,
+                              void (*check)(const json::Node& root), const Locked& locked) {
+  const json::Document doc = json::Document::from_file(path);
+  check(doc.root());
+  auto scene = std::make_unique<arcus_scene_s>(ctx, engine);
+  if (auto v = doc.root().find("name")) scene->name = v->string();
+  if (auto v = doc.root().find("description")) scene->description = v->string();
+  scene->document = doc.dump();
+  locked([&] { retain_context(ctx); });  // the scene's reference
+  return scene.release();
+}
+
 const Loader& loader_for(const std::string& path) {
   // The document's top-level keys say whose scene it is (a render scene has a
   // "camera"); a document that is not an object falls to the default, which reports it.
   const json::Document doc = json::Document::from_file(path);
   const json::Node root = doc.root();
-  const Registered *fallback = nullptr, *marked = nullptr;
+  const Registered *fallback = nullptr, *marked = nullptr, *tied = nullptr;
   for (const Registered& r : loaders()) {
-    if (!r.marker)
+    if (!r.marker) {
       fallback = &r;
-    else if (root.is_object() && root.find(r.marker) && (!marked || r.precedence > marked->precedence))
-      marked = &r;
+    } else if (root.is_object() && root.find(r.marker)) {
+      if (!marked || r.precedence > marked->precedence)
+        marked = &r, tied = nullptr;
+      else if (r.precedence == marked->precedence)
+        tied = &r;
+    }
   }
+  // Two engines' markers of the same precedence: which reads it must not depend on the
+  // order the engines registered in.
+  if (marked && tied)
+    fail(ARCUS_ERROR_INVALID_ARGUMENT, path + ": $: has both \"" + marked->marker + "\" (a " + marked->engine +
+                                           " scene) and \"" + tied->marker + "\" (a " + tied->engine +
+                                           " scene) at the top level; which kind of scene is it?");
   if (marked) return marked->loader;
   if (!fallback) fail(ARCUS_ERROR_UNSUPPORTED, path + ": no engine reads scene files");
   return fallback->loader;

@@ -8,6 +8,7 @@
 
 #include "arcus/arcus_scene.h"
 #include "core/handle.h"
+#include "scene/json_reader.h"
 
 struct arcus_scene_s : arcus::Handle {
   arcus_scene_s(arcus_context_t* ctx, const char* engine) : Handle(arcus::HandleType::Scene, ctx), engine(engine) {}
@@ -25,13 +26,21 @@ using Loader = std::function<arcus_scene_s*(arcus_context_t* ctx, const std::str
 
 // `marker`: the top-level key of the engine's scene files ("camera"), or null for the
 // engine that reads every other scene (the curved one).  When a document has the
-// markers of several engines, the one registered with the highest `precedence` reads it.
+// markers of several engines, the one registered with the highest `precedence` reads it;
+// two of the same precedence are an error.
 void register_loader(const char* engine, Loader loader, const char* marker, int precedence = 0);
 struct LoaderEntry {
   LoaderEntry(const char* engine, Loader loader, const char* marker = nullptr, int precedence = 0) {
     register_loader(engine, std::move(loader), marker, precedence);
   }
 };
+
+// A loader's work for a scene whose engine makes no library objects of it (rainbow
+// scenes and sweep specs: Python builds their tables and runs their tasks): reads the
+// file, checks its schema with `check`, and returns a scene of `engine` holding its name
+// (if any), description and document.
+arcus_scene_s* document_scene(arcus_context_t* ctx, const std::string& path, const char* engine,
+                              void (*check)(const json::Node& root), const Locked& locked);
 
 // The loader of the scene at `path`, by its document's top-level keys; reads the file
 // (ARCUS_ERROR_IO / INVALID_ARGUMENT for one that is unreadable or not JSON).

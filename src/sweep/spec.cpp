@@ -1,10 +1,8 @@
 #include "sweep/spec.h"
 
 #include <cmath>
-#include <memory>
 #include <string>
 
-#include "core/context.h"
 #include "core/format.h"
 #include "curved/scene_desc.h"  // parse_name
 #include "scene/scene.h"
@@ -13,16 +11,6 @@ namespace arcus::sweep {
 namespace {
 
 using json::Node;
-
-void numbers(const Node& n, std::initializer_list<const char*> keys) {
-  for (const char* k : keys)
-    if (auto v = n.find(k)) v->number();
-}
-
-void integers(const Node& n, std::initializer_list<std::pair<const char*, uint64_t>> keys) {
-  for (const auto& [k, max] : keys)
-    if (auto v = n.find(k)) v->integer(max);
-}
 
 // A particle of a phase_tables spec (arcus.sweep.PARTICLE_KEYS, arcus.halo.SPEC_KEYS).
 void check_particle(const Node& p) {
@@ -33,8 +21,8 @@ void check_particle(const Node& p) {
     p.expect_object({"kind", "shape", "size", "orientation", "tilt_deg", "sun_elevation_deg", "orientations", "seed"});
     p.member("shape").choice<int>({{"column", 0}, {"plate", 1}});
     if (auto v = p.find("orientation")) v->choice<int>({{"random", 0}, {"horizontal", 1}});
-    numbers(p, {"size", "tilt_deg", "sun_elevation_deg"});
-    integers(p, {{"orientations", 100000000}, {"seed", (uint64_t(1) << 63) - 1}});
+    p.check_numbers({"size", "tilt_deg", "sun_elevation_deg"});
+    p.check_integers({{"orientations", 100000000}, {"seed", (uint64_t(1) << 63) - 1}});
     return;
   }
   switch (kind) {
@@ -50,12 +38,12 @@ void check_particle(const Node& p) {
     default:
       p.expect_object({"kind", "path", "scale", "smooth", "material", "rotation", "temperature"});
       p.member("path").string();
-      numbers(p, {"scale"});
+      p.check_numbers({"scale"});
       if (auto v = p.find("smooth")) v->boolean();
   }
-  numbers(p, {"temperature"});
+  p.check_numbers({"temperature"});
   if (auto v = p.find("material")) v->choice<int>({{"water", 0}, {"ice", 1}});
-  if (auto v = p.find("rotation")) {
+  if (auto v = p.find("rotation"); v && !v->is_null()) {
     const std::vector<Node> rows = v->elements();
     if (rows.size() != 3) v->fail("expected a 3x3 matrix (particle -> world): three rows");
     for (const Node& row : rows) row.vec3();
@@ -76,7 +64,7 @@ void check_spec(const Node& root) {
       check_axis(root.member("wavelengths"));
       check_axis(root.member("theta"));
       if (auto v = root.find("phi"); v && !v->is_null()) check_axis(*v);
-      integers(root, {{"grid", 8192}, {"max_bounces", 15}});
+      root.check_integers({{"grid", 8192}, {"max_bounces", 15}});
       break;
     }
     case Kind::ocean_grid:
@@ -84,7 +72,7 @@ void check_spec(const Node& root) {
                           "photons", "k", "steps", "estimator"});
       root.member("scene").string();
       for (const char* axis : {"chlorophyll", "a_d400", "a_y440"}) check_axis(root.member(axis));
-      integers(root, {{"width", 16384}, {"height", 16384}, {"photons", uint64_t(1) << 40}, {"k", uint64_t(1) << 40},
+      root.check_integers({{"width", 16384}, {"height", 16384}, {"photons", uint64_t(1) << 40}, {"k", uint64_t(1) << 40},
                       {"steps", uint64_t(1) << 40}});
       if (auto v = root.find("estimator")) v->choice<int>({{"per_step", 0}, {"beam", 1}});
       break;
@@ -94,7 +82,7 @@ void check_spec(const Node& root) {
       root.member("scene").string();
       root.member("parameter").string();
       check_axis(root.member("values"));
-      integers(root, {{"width", 16384}, {"height", 16384}});
+      root.check_integers({{"width", 16384}, {"height", 16384}});
       if (auto v = root.find("techniques")) {
         if (v->is_array())
           for (const Node& t : v->elements()) t.string();
@@ -108,15 +96,7 @@ void check_spec(const Node& root) {
 }
 
 arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::Locked& locked) {
-  const json::Document doc = json::Document::from_file(path);
-  check_spec(doc.root());
-  auto scene = std::make_unique<arcus_scene_s>(ctx, "sweep");
-  const auto name = doc.root().find("name");
-  scene->name = name ? name->string() : "";
-  if (auto v = doc.root().find("description")) scene->description = v->string();
-  scene->document = doc.dump();
-  locked([&] { retain_context(ctx); });  // the scene's reference
-  return scene.release();
+  return scene::document_scene(ctx, path, "sweep", check_spec, locked);
 }
 
 const scene::LoaderEntry kLoader("sweep", load, "kind");

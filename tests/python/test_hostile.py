@@ -116,8 +116,17 @@ def test_a_scene_of_another_engine_is_named_as_such(repo):
 
 def test_an_axis_of_a_billion_values_is_refused_before_it_is_made():
     # {"range": [100, 180, 1e-9]} asked for 596 GiB.
-    with pytest.raises(arcus.ArgumentError, match="more than 1000000"):
-        sweep.spec_axis({"range": [100, 180, 1e-9]}, "theta")
+    for args in ([100, 180, 1e-9], [0, 1e300, 1e-10]):  # the second's count overflows a float
+        with pytest.raises(arcus.ArgumentError, match="more than 1000000"):
+            sweep.spec_axis({"range": args}, "theta")
+
+
+def test_a_spec_file_takes_what_the_python_call_takes(tmp_path):
+    # The schema of spec files is the library's; Python's defaults (rotation None) pass it.
+    path = tmp_path / "spec.json"
+    path.write_text(json.dumps({"kind": "phase_tables", "theta": [130], "wavelengths": [500],
+                                "particles": [{"kind": "sphere", "radius": 5e-4, "rotation": None}]}))
+    assert sweep.load_spec(path)["particles"][0]["rotation"] is None
 
 
 # ---- the sweep's cache: this user's alone -------------------------------------------------
@@ -328,14 +337,12 @@ def test_closing_a_context_cancels_its_running_job_which_keeps_its_results():
         except arcus.Error as exc:
             outcome["error"] = exc
 
-    t = threading.Thread(target=job)
+    t = threading.Thread(target=job, daemon=True)  # hours of work unless cancelled
     t.start()
-    time.sleep(1.0)  # the job runs (it would take hours)
-    started = time.monotonic()
-    ctx.close()
+    time.sleep(1.0)  # the job runs
+    closed, _ = finishes(ctx.close, 30)
     t.join(30)
-    assert not t.is_alive()
-    assert time.monotonic() - started < 30
+    assert closed and not t.is_alive()
     error = outcome["error"]
     assert error.status == "ARCUS_ERROR_CANCELLED" and "close() was called from another thread" in error.message
     result = error.result
@@ -343,3 +350,33 @@ def test_closing_a_context_cancels_its_running_job_which_keeps_its_results():
     assert set(result.status_names) == {"CANCELLED"} and np.all(result.lengths > 0), "where each ray got to"
     with pytest.raises(arcus.ArgumentError, match="closed"):
         ctx.device
+
+
+def test_closing_a_context_cancels_its_render(tmp_path):
+    # The same for a render frame (which has no partial result): cancelled, not waited for.
+    scene = tmp_path / "slow.json"
+    scene.write_text(json.dumps({
+        "name": "slow", "medium": {"type": "linear", "n0": 1.0, "gradient": [0, 1e-4, 0]},
+        "integrator": {"method": "rk4", "step": 0.001, "length": 200},
+        "camera": {"position": [0, 0, 0], "look_at": [0, 0, -1], "vfov_deg": 40, "width": 256, "height": 256},
+        "materials": {"m": {"diffuse": [0.5, 0.5, 0.5]}},
+        "objects": [{"type": "sphere", "center": [0, 0, -150], "radius": 1, "material": "m"}],
+        "sky": {"type": "constant", "color": [0, 0, 1]}}))
+    ctx = arcus.Context()
+    outcome = {}
+
+    def render():
+        try:
+            outcome["result"] = ctx.render(scene, techniques=[])
+        except arcus.Error as exc:
+            outcome["error"] = exc
+
+    t = threading.Thread(target=render, daemon=True)  # hours of work unless cancelled
+    t.start()
+    time.sleep(1.0)
+    closed, _ = finishes(ctx.close, 60)
+    t.join(60)
+    assert closed and not t.is_alive()
+    error = outcome.get("error")
+    assert error is not None, "the render finished before close(): make it slower"
+    assert error.status == "ARCUS_ERROR_CANCELLED" and "close() was called from another thread" in error.message

@@ -263,6 +263,39 @@ TEST(MeshesHostile, FacesNamingMissingVerticesOrCoordinatesAreRefused) {
   expect_refused(dir.path() + "/index.ply", ply, "faces name vertices that do not exist");
 }
 
+TEST(MeshesHostile, AnStlTriangleWithCoincidentCornersIsDroppedNotAnError) {
+  // OpenMesh's STL reader never hands over a triangle whose corners merge: it has no
+  // area, so the file is read with the others (CAD exports have them).
+  TempDir dir;
+  for (const bool binary : {false, true}) {
+    const float tris[2][9] = {{0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 0, 0, 1, 0, 0, 1, 0, 0}};
+    std::string bytes;
+    if (binary) {
+      bytes = std::string(80, '\0');
+      const uint32_t n = 2;
+      bytes.append(reinterpret_cast<const char*>(&n), 4);
+      for (const auto& t : tris) {
+        bytes.append(12, '\0');
+        bytes.append(reinterpret_cast<const char*>(t), sizeof t);
+        bytes.append(2, '\0');
+      }
+    } else {
+      bytes = "solid s\n";
+      for (const auto& t : tris) {
+        bytes += "facet normal 0 0 1\nouter loop\n";
+        for (int c = 0; c < 3; ++c)
+          bytes += "vertex " + std::to_string(t[3 * c]) + " " + std::to_string(t[3 * c + 1]) + " " +
+                   std::to_string(t[3 * c + 2]) + "\n";
+        bytes += "endloop\nendfacet\n";
+      }
+      bytes += "endsolid s\n";
+    }
+    const std::string path = dir.path() + "/cad.stl";
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+    EXPECT_EQ(load_mesh(path).triangle_count(), 1u) << (binary ? "binary" : "text");
+  }
+}
+
 TEST(MeshesHostile, NonManifoldFacesAreKeptWhole) {
   // Three triangles on one edge: OpenMesh's importer adds the third with copies of its
   // vertices; no face is lost.

@@ -1,7 +1,7 @@
 // Programs are cached per device and feature set in memory, and across processes on
 // disk (ARCUS_CACHE_DIR): a later runtime loads what an earlier one built; a corrupt or
 // truncated file is rebuilt, never trusted; "off" writes nothing.  The disk cache is
-// this user's alone (docs/caches.md): a directory or entry that another user owns or
+// this user's alone (docs/security.md): a directory or entry that another user owns or
 // could write is not used, so a planted program never runs, and no planted link is
 // ever written through.
 #include <gtest/gtest.h>

@@ -1,6 +1,7 @@
 """Devices, contexts, advancing rays and loading scenes."""
 
 import collections
+import contextlib
 import ctypes
 import numbers
 import threading
@@ -344,16 +345,21 @@ class Context:
         """Releases the context, every field realised on it and its scenes (idempotent).
 
         Safe from any thread: jobs running on the context in other threads are cancelled
-        at their next slice (a fraction of a second) and raise :class:`arcus.Error`
+        at their next slice (slices last about a quarter second; a kernel build or a
+        photon map under way is finished first) and raise :class:`arcus.Error`
         ``ARCUS_ERROR_CANCELLED`` with what they had computed attached (``.result``);
         close() returns once they have, and later calls raise "closed"."""
         self._not_in_progress_callback()
         state = self._state
         me = threading.get_ident()
-        with state.jobs:
-            state.closing = True
-            state.jobs.wait_for(lambda: sum(state.job_threads.values()) == state.job_threads[me])
-        self._finalizer()
+        try:
+            with state.jobs:
+                state.closing = True
+                state.jobs.wait_for(lambda: sum(state.job_threads.values()) == state.job_threads[me])
+        finally:
+            # Interrupted while waiting, the context is released all the same: the
+            # library's jobs hold references of their own until they return.
+            self._finalizer()
 
     @property
     def closed(self):
@@ -534,6 +540,13 @@ class Context:
         job and is raised here once the library has returned.
         """
         ctx = self._handle
+        with self._running_job():
+            return self._run_registered_job(ctx, start, progress, record_path, what, reader)
+
+    @contextlib.contextmanager
+    def _running_job(self):
+        """This thread runs a job on the context for the block: close() from another
+        thread cancels it (through its progress callback) and waits for the block to end."""
         state = self._state
         me = threading.get_ident()
         with state.jobs:
@@ -541,7 +554,7 @@ class Context:
                 raise ArgumentError("this arcus.Context is closed")
             state.job_threads[me] += 1
         try:
-            return self._run_registered_job(ctx, start, progress, record_path, what, reader)
+            yield
         finally:
             with state.jobs:
                 state.job_threads[me] -= 1
@@ -698,6 +711,13 @@ class Context:
                     raise ArgumentError("techniques: unknown technique %r (expected one of %s)"
                                         % (t, ", ".join(sorted(names))))
                 bits |= names[t]
+        with self._running_job():
+            return self._render_file(encoded, bits, frames, exr, png)
+
+    def _render_file(self, encoded, bits, frames, exr, png):
+        state = self._state
+        # close() from another thread cancels the frame (a frame has no partial result).
+        cancel_on_close = _lib.PROGRESS_CALLBACK(lambda _user, _fraction: 1 if state.closing else 0)
         scene = c_void_p()
         self._check(lib.arcus_scene_load(self._handle, encoded, byref(scene)))
         scene_ref = _Handle(scene, lib.arcus_scene_release)
@@ -710,7 +730,11 @@ class Context:
             job = None
             for _ in range(frames):
                 out = c_void_p()
-                self._check(lib.arcus_render_frame(renderer, _lib.PROGRESS_CALLBACK(), None, byref(out)))
+                code = lib.arcus_render_frame(renderer, cancel_on_close, None, byref(out))
+                if code != C.SUCCESS and state.closing:
+                    raise error_for(code, _lib.last_error(self._handle) + " (arcus.Context.close() was called "
+                                    "from another thread)", _lib.status_name(code))
+                self._check(code)
                 if job is not None:
                     lib.arcus_job_release(job)
                 job = out

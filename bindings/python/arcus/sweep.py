@@ -542,8 +542,10 @@ class _Archive:
     @classmethod
     def load(cls, path):
         """Reads a file written by :meth:`save`."""
-        if not os.path.isfile(path):  # a FIFO would block the read for ever, a device never end
-            raise ArgumentError("path: %r is not a regular file (a saved sweep)" % (os.fspath(path),))
+        with contextlib.suppress(OSError):  # a missing file: numpy says so below
+            # A FIFO would block the read for ever, a device never end.
+            if not stat.S_ISREG(os.stat(path).st_mode):
+                raise ArgumentError("path: %r is not a regular file (a saved sweep)" % (os.fspath(path),))
         try:
             with np.load(path, allow_pickle=False) as f:
                 arrays = {name: f[name] for name in f.files}
@@ -935,12 +937,13 @@ def spec_axis(value, name):
         a = to_real_array(args, "%s.%s" % (name, form))
         if a.shape != (3,) or not np.isfinite(a).all():
             raise ArgumentError("%s.%s must be three finite numbers, got %r" % (name, form, args))
-        first, last, third = a
+        first, last, third = (float(x) for x in a)  # Python floats: an overflow is inf, quietly
         if form == "linspace":
             return np.linspace(first, last, to_int(third, name + ".linspace count", 1, MAX_AXIS_VALUES))
         if not (third > 0 and last >= first):
             raise ArgumentError("%s.range needs step > 0 and last >= first, got %r" % (name, args))
-        count = math.floor((last - first) / third + 1e-9) + 1
+        ratio = (last - first) / third
+        count = math.floor(ratio + 1e-9) + 1 if math.isfinite(ratio) else math.inf
         if not count <= MAX_AXIS_VALUES:  # [100, 180, 1e-9] asked for 596 GiB
             raise ArgumentError("%s.range %r makes %.3g values, more than %d (a larger step?)"
                                 % (name, args, count, MAX_AXIS_VALUES))
