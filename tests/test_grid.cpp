@@ -1,10 +1,12 @@
 // Voxel-grid fields: trilinear values and gradients against a host reference, the
 // clamped exterior (face values extend outwards, zero gradient across the face), files in
 // both scalar types, and rays that start outside the grid.
+#include "scoped_env.h"
 #include "test_util.h"
 
 #include <unistd.h>
 
+#include <filesystem>
 #include <fstream>
 #include <random>
 
@@ -224,6 +226,24 @@ struct Ramp {
     return r;
   }
 };
+
+TEST_F(Grid, AGridFileBeyondTheHostsMemoryIsRefusedBeforeAllocating) {
+  // A sparse file of 2^31 float32 values (8 GiB that occupy no disk) passed the size
+  // check and its 16 GiB of doubles were allocated.  Now they are held to the memory
+  // available (a bound of 1 GiB here) first.
+  const std::string path = temp_path("huge");
+  { std::ofstream(path, std::ios::binary) << ""; }
+  std::filesystem::resize_file(path, (uint64_t(1) << 31) * 4);
+  const uint32_t dims[3] = {65536, 16384, 2};
+  const double origin[3] = {0, 0, 0}, spacing[3] = {1, 1, 1};
+  ScopedEnv limit("ARCUS_MEMORY_LIMIT", "1G");
+  arcus_field_t* f = nullptr;
+  EXPECT_EQ(arcus_field_create_grid_from_file(ctx(), path.c_str(), ARCUS_FLOAT32, dims, origin, spacing, &f),
+            ARCUS_ERROR_OUT_OF_MEMORY);
+  EXPECT_EQ(f, nullptr);
+  EXPECT_NE(last_error().find("2147483648 values needs 16 GiB of host memory"), std::string::npos) << last_error();
+  std::filesystem::remove(path);
+}
 
 TEST_F(Grid, RayStartingOutsideTravelsStraightUntilItEnters) {
   const double L = 8.0, rtol = 1e-10, atol = 1e-13;
