@@ -93,7 +93,7 @@ static_assert(flops_per_step(ARCUS_METHOD_RK4, ARCUS_FIELD_LINEAR) == 118, "see 
 // invariant and hoisted out of the step loop, and stage 3's v equals stage 2's and is
 // computed once (6): 118 − 21 = 97.  Checked in the disassembly of one step-loop
 // iteration (8 groups of double8): 312 vfmadd, 96 vmulpd, 24 vaddpd and 32 vdivpd on
-// zmm, per group 39 FMA + 12 mul + 3 add + 4 div = 97 (README.md, "RK4 FLOPs per step",
+// zmm, per group 39 FMA + 12 mul + 3 add + 4 div = 97 (bench/README.md, "RK4 FLOPs per step",
 // says how to redo it after a kernel change).
 constexpr double kRk4LinearExecutedFlops = 97;
 

@@ -407,8 +407,7 @@ TEST_F(Render, TheSunAtOnePointFiveTimesTenToTheElevenMetresIsHitInDoubleAndFloa
           // The straight ray through the pixel's centre meets the sphere at the closed
           // form t = (D² − r²) / (b + sqrt(b² − D² + r²)), b = D·dx/|d| (stable form):
           // in double to 1e-4 of the radius.  In float the end of a 1.5e11 m step rounds
-          // to 1 part in 1.7e7, so float is held to 1e-6 of the distance (README,
-          // "Precision").
+          // to 1 part in 1.7e7, so float is held to 1e-6 of the distance.
           const double t = std::tan(0.5 * M_PI / 180);
           const double px = (2.0 * (i + 0.5) / 21 - 1) * t, py = (1 - 2.0 * (j + 0.5) / 21) * t;
           const double b = d / std::sqrt(1 + px * px + py * py);

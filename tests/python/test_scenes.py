@@ -97,7 +97,7 @@ def test_mirage_scene_keeps_snells_invariant_and_grounds_the_rays_it_predicts(ct
     np.testing.assert_allclose(n_end * result.directions[:, 0], invariant, rtol=0, atol=1e-11)
     n_ground = scene.field.evaluate(ctx, [0.0, 0.0, 0.0])[0][0]
     grounded = invariant < n_ground
-    assert 10 < grounded.sum() < 54  # both kinds of ray are in the fan (README: 33 grounded)
+    assert 10 < grounded.sum() < 54  # both kinds of ray are in the fan (33 reach the ground)
     np.testing.assert_array_equal(result.status, np.where(grounded, arcus.RAY_LEFT_BOX, arcus.RAY_DONE))
     np.testing.assert_allclose(result.positions[grounded, 1], 0.0, rtol=0, atol=1e-9)
     turned = ~grounded & (unit[:, 1] < 0)  # dipped, turned, climbed
