@@ -1,0 +1,309 @@
+"""The ctypes mirror of the structs of include/arcus/arcus.h: field order and types
+exactly as in C (tests/python/test_library.py checks every size and offset against the
+compiled library), and the callback types.  Imported through :mod:`arcus._lib`."""
+
+import ctypes
+from ctypes import POINTER, c_char, c_char_p, c_double, c_int, c_int32, c_uint32, c_uint64, c_void_p
+
+# ---- structs (field order and types exactly as in arcus.h) ---------------------------
+# C enums are passed as `int`, which is what every ABI arcus targets uses for them.
+
+
+class DeviceInfoStruct(ctypes.Structure):
+    """arcus_device_info."""
+
+    _fields_ = [
+        ("index", c_uint32),
+        ("name", c_char * 256),
+        ("platform", c_char * 256),
+        ("version", c_char * 128),
+        ("is_gpu", c_int32),
+        ("fp64", c_int32),
+        ("compute_units", c_uint32),
+        ("global_memory", c_uint64),
+        ("lanes", c_uint32),
+    ]
+
+
+class InversionStruct(ctypes.Structure):
+    """arcus_inversion."""
+
+    _fields_ = [("base", c_double), ("top", c_double), ("delta_t", c_double)]
+
+
+class AtmosphereDescStruct(ctypes.Structure):
+    """arcus_atmosphere_desc."""
+
+    _fields_ = [
+        ("spherical", c_int32),
+        ("wavelength", c_double),
+        ("sea_level_temperature", c_double),
+        ("sea_level_pressure", c_double),
+        ("inversion_count", c_uint32),
+        ("inversions", POINTER(InversionStruct)),
+    ]
+
+
+#: int32_t (*arcus_progress_callback)(void* user, double fraction)
+PROGRESS_CALLBACK = ctypes.CFUNCTYPE(c_int32, c_void_p, c_double)
+
+
+class AdvanceParamsStruct(ctypes.Structure):
+    """arcus_advance_params."""
+
+    _fields_ = [
+        ("method", c_int),
+        ("precision", c_int),
+        ("length", c_double),
+        ("step", c_double),
+        ("rtol", c_double),
+        ("atol", c_double),
+        ("min_step", c_double),
+        ("max_step", c_double),
+        ("max_rejections", c_uint32),
+        ("max_steps", c_uint64),
+        ("use_box", c_int32),
+        ("box_min", c_double * 3),
+        ("box_max", c_double * 3),
+        ("record_path", c_int32),
+        ("path_capacity", c_uint32),
+        ("progress", PROGRESS_CALLBACK),  # NULL: PROGRESS_CALLBACK()
+        ("progress_user", c_void_p),
+    ]
+
+
+class JobStatsStruct(ctypes.Structure):
+    """arcus_job_stats."""
+
+    _fields_ = [
+        ("build_seconds", c_double),
+        ("kernel_seconds", c_double),
+        ("total_seconds", c_double),
+        ("program_origin", c_int32),
+        ("lanes", c_uint32),
+        ("groups", c_uint32),
+        ("launches", c_uint32),
+    ]
+
+
+class CameraStruct(ctypes.Structure):
+    _fields_ = [
+        ("position", c_double * 3),
+        ("look_at", c_double * 3),
+        ("up", c_double * 3),
+        ("vfov_deg", c_double),
+        ("width", c_uint32),
+        ("height", c_uint32),
+    ]
+
+
+class RenderStatsStruct(ctypes.Structure):
+    _fields_ = [(name, c_double) for name in
+                ("trace_seconds", "walk_seconds", "photon_seconds", "shade_seconds", "total_seconds")] + [
+        (name, c_uint64) for name in
+        ("pixels", "rays_traced", "rays_mirrored", "rays_interpolated", "rays_cached", "rays_unresolved", "steps",
+         "tests", "shadow_rays", "photons", "cache_bytes")] + [("techniques", c_uint32)]
+
+
+
+# ---- the ocean engine (arcus_ocean.h) --------------------------------------------------
+
+
+class WavelengthGridStruct(ctypes.Structure):
+    _fields_ = [("first_nm", c_double), ("step_nm", c_double), ("count", c_uint32)]
+
+
+class SpectrumStruct(ctypes.Structure):
+    _fields_ = [("count", c_uint32), ("nm", POINTER(c_double)), ("values", POINTER(c_double))]
+
+
+class PhaseFunctionStruct(ctypes.Structure):
+    _fields_ = [
+        ("kind", c_int32),
+        ("a", c_double),
+        ("g_forward", c_double),
+        ("g_backward", c_double),
+        ("forward_weight", c_double),
+        ("table_count", c_uint32),
+        ("table_cosines", POINTER(c_double)),
+        ("table_values", POINTER(c_double)),
+    ]
+
+
+class BioOpticalStruct(ctypes.Structure):
+    _fields_ = [(name, c_double) for name in (
+        "chlorophyll", "a_d400", "a_y440", "s_d", "s_y", "chlorophyll_yield", "cdom_yield_scale", "raman_scale",
+        "detritus_scattering_reference_a_d400")] + [("detritus_phase", PhaseFunctionStruct),
+                                                    ("stokes_only", c_int32)]
+
+
+class WaterIopsStruct(ctypes.Structure):
+    _fields_ = [
+        ("absorption", SpectrumStruct),
+        ("scattering", SpectrumStruct),
+        ("phase", PhaseFunctionStruct),
+        ("raman", c_int32),
+        ("chlorophyll", c_double),
+        ("chlorophyll_yield", c_double),
+        ("a_y440", c_double),
+        ("s_y", c_double),
+        ("stokes_only", c_int32),
+    ]
+
+
+class OceanLightStruct(ctypes.Structure):
+    _fields_ = [
+        ("kind", c_int32),
+        ("position", c_double * 3),
+        ("direction", c_double * 3),
+        ("half_angle_deg", c_double),
+        ("radius", c_double),
+        ("spectrum", SpectrumStruct),
+    ]
+
+
+class OceanSetupStruct(ctypes.Structure):
+    _fields_ = [
+        ("grid", WavelengthGridStruct),
+        ("light_count", c_uint32),
+        ("lights", POINTER(OceanLightStruct)),
+        ("surface", c_int32),
+        ("n_water", c_double),
+        ("bottom_depth", c_double),
+        ("bottom_albedo", c_double),
+        ("box_lo", c_double * 3),
+        ("box_hi", c_double * 3),
+        ("depth_count", c_uint32),
+        ("depths", POINTER(c_double)),
+        ("layer", c_double),
+    ]
+
+
+class OceanTraceParamsStruct(ctypes.Structure):
+    _fields_ = [
+        ("photons", c_uint64),
+        ("max_interactions", c_uint32),
+        ("seed", c_uint64),
+        ("store_photons", c_int32),
+        ("force_inelastic", c_int32),
+        ("progress", PROGRESS_CALLBACK),
+        ("progress_user", c_void_p),
+    ]
+
+
+class OceanTalliesStruct(ctypes.Structure):
+    _fields_ = [(name, c_uint64) for name in ("photons", "interactions", "stored")] + [
+        (name, c_double) for name in ("emitted", "past_limit", "bottom", "escaped", "absorbed")] + [
+        (name, c_double * 10) for name in ("count", "arriving", "absorbed_by")] + [
+        ("max_interactions", c_uint32), ("interaction_bins", c_uint32)]
+
+class OceanMarchStruct(ctypes.Structure):
+    _fields_ = [
+        ("steps", c_uint32),
+        ("distance", c_double),
+        ("k", c_uint32),
+        ("estimator", c_int32),
+        ("single_scattering", c_int32),
+        ("multiple_scattering", c_int32),
+        ("exposure", c_double),
+    ]
+
+
+class OceanRenderStatsStruct(ctypes.Structure):
+    _fields_ = [(name, c_double) for name in ("trace_seconds", "map_seconds", "estimate_seconds", "total_seconds")] + [
+        ("photons_stored", c_uint64)]
+
+
+
+# ---- rainbows and Lorenz–Mie (arcus_rainbow.h) ----------------------------------------
+
+
+class ParticleInfoStruct(ctypes.Structure):
+    """arcus_particle_info."""
+
+    _fields_ = [("kind", c_int32), ("equivalent_radius", c_double), ("volume", c_double),
+                ("bound_radius", c_double), ("triangles", c_uint32)]
+
+
+class RainbowParamsStruct(ctypes.Structure):
+    """arcus_rainbow_params."""
+
+    _fields_ = [
+        ("wavelength_nm", c_double),
+        ("material", c_int32),
+        ("temperature_c", c_double),
+        ("refractive_index", c_double),
+        ("grid", c_uint32),
+        ("alpha", c_double),
+        ("max_bounces", c_uint32),
+        ("edge_rays", c_int32),
+        ("rotation", c_double * 9),
+        ("query_phi_deg", c_double),
+        ("progress", PROGRESS_CALLBACK),
+        ("progress_user", c_void_p),
+    ]
+
+
+class RainbowStatsStruct(ctypes.Structure):
+    """arcus_rainbow_stats."""
+
+    _fields_ = [("refractive_index", c_double)] + [
+        (name, c_uint64) for name in ("rays", "hits", "edge_rays", "patches", "patches_rejected",
+                                      "patches_folded")] + [
+        ("intercepted", c_double), ("scattered", c_double * 16), ("remaining", c_double)] + [
+        (name, c_double) for name in ("cast_seconds", "patch_seconds", "bvh_seconds", "query_seconds")]
+
+
+class MieEfficienciesStruct(ctypes.Structure):
+    """arcus_mie_efficiencies."""
+
+    _fields_ = [("q_ext", c_double), ("q_sca", c_double), ("q_back", c_double), ("g", c_double)]
+
+
+class RainbowTableStruct(ctypes.Structure):
+    """arcus_rainbow_table."""
+
+    _fields_ = [
+        ("wavelength_count", c_uint32),
+        ("wavelengths_nm", POINTER(c_double)),
+        ("theta_count", c_uint32),
+        ("theta_first_deg", c_double),
+        ("theta_last_deg", c_double),
+        ("phi_count", c_uint32),
+        ("scattering", POINTER(c_double)),
+        ("extinction", POINTER(c_double)),
+    ]
+
+
+class RainbowSkyStruct(ctypes.Structure):
+    """arcus_rainbow_sky."""
+
+    _fields_ = [
+        ("width", c_uint32),
+        ("height", c_uint32),
+        ("camera_position", c_double * 3),
+        ("camera_forward", c_double * 3),
+        ("camera_up", c_double * 3),
+        ("fov_deg", c_double),
+        ("sun_elevation_deg", c_double),
+        ("sun_azimuth_deg", c_double),
+        ("sun_diameter_deg", c_double),
+        ("sun_samples", c_uint32),
+        ("sun_irradiance", POINTER(c_double)),
+        ("sky_radiance", POINTER(c_double)),
+        ("ground_radiance", POINTER(c_double)),
+        ("sky_image", POINTER(ctypes.c_float)),
+        ("sky_image_width", c_uint32),
+        ("sky_image_height", c_uint32),
+        ("sky_image_scale", c_double),
+        ("rain_min", c_double * 3),
+        ("rain_max", c_double * 3),
+        ("march_steps", c_uint32),
+        ("exposure", c_double),
+        ("progress", PROGRESS_CALLBACK),
+        ("progress_user", c_void_p),
+    ]
+
+
+#: void (*arcus_error_callback)(void* user, arcus_status status, const char* message)
+ERROR_CALLBACK = ctypes.CFUNCTYPE(None, c_void_p, c_int, c_char_p)
