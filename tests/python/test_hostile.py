@@ -13,11 +13,10 @@ import shutil
 import socket
 import stat
 import subprocess
+import sys
 import tempfile
 import threading
 import time
-import urllib.error
-import urllib.request
 import warnings
 import zipfile
 from pathlib import Path
@@ -28,6 +27,7 @@ import pytest
 import arcus
 import arcus.sky as sky
 import arcus.sweep as sweep
+from arcus import _task_cache
 
 NOBODY = 65534  # the second user of the cache tests (root gives files to it)
 
@@ -150,7 +150,7 @@ def planted_copy(genuine, value):
     arrays.pop("_checksum")
     arrays["value"] = np.array([value])
     buf = io.BytesIO()
-    np.savez(buf, **dict(arrays, _key=key, _checksum=np.array(sweep._checksum(arrays))))
+    np.savez(buf, **dict(arrays, _key=key, _checksum=np.array(_task_cache._checksum(arrays))))
     return buf.getvalue()
 
 
@@ -222,14 +222,14 @@ def test_an_entry_inflating_past_the_bound_is_not_decompressed(tmp_path, monkeyp
     with np.load(entry) as f:
         arrays = {name: f[name] for name in f.files}
     arrays["value"] = np.zeros(1 << 20)  # 8 MiB of zeros, a few kB compressed
-    arrays["_checksum"] = np.array(sweep._checksum({k: v for k, v in arrays.items() if not k.startswith("_")}))
+    arrays["_checksum"] = np.array(_task_cache._checksum({k: v for k, v in arrays.items() if not k.startswith("_")}))
     with zipfile.ZipFile(entry, "w", zipfile.ZIP_DEFLATED) as z:
         for name, a in arrays.items():
             buf = io.BytesIO()
             np.lib.format.write_array(buf, a)
             z.writestr(name + ".npy", buf.getvalue())
     assert entry.stat().st_size < 100_000
-    monkeypatch.setattr(sweep, "MAX_CACHE_ENTRY_BYTES", 1 << 20)
+    monkeypatch.setattr(_task_cache, "MAX_CACHE_ENTRY_BYTES", 1 << 20)
     inflated = []
     monkeypatch.setattr(np.lib.format, "read_array", lambda *a, **k: inflated.append(1))
     result = run(tmp_path)
@@ -274,7 +274,7 @@ def test_a_cache_that_cannot_be_written_costs_only_the_cache(tmp_path):
     for entry in tmp_path.glob("*.npz"):
         entry.unlink()
         entry.mkdir()  # in the way of the entry
-    sweep._warned.clear()
+    _task_cache._warned.clear()
     with pytest.warns(RuntimeWarning, match="cannot write to the table cache"):
         result = run(tmp_path, xs=(1.0, 2.0))
     assert [r["value"][0] for r in result.results] == [2.0, 4.0] and result.computed == 2
@@ -297,24 +297,37 @@ def outward_address():
     return None if address.startswith("127.") else address
 
 
-def test_the_local_cluster_listens_on_loopback_only_and_serves_no_dashboard():
+def test_the_local_cluster_listens_on_loopback_only_and_serves_no_dashboard(repo):
     # The sweep's LocalCluster served its dashboard on 0.0.0.0, without authentication.
+    # In a process of its own: a dashboard another cluster of this process registered
+    # would be served by every later scheduler.
     pytest.importorskip("distributed")
-    with sweep._dask_client(None, 1, 10) as client:
-        info = client.scheduler_info()
-        addresses = [client.scheduler.address] + list(info["workers"])
-        assert all(a.startswith("tcp://127.0.0.1:") for a in addresses), addresses
-        # The scheduler's HTTP server is on loopback too, and serves no dashboard.
-        port = info["services"]["dashboard"]
-        assert port != 8787
-        with pytest.raises(urllib.error.HTTPError) as err:
-            urllib.request.urlopen("http://127.0.0.1:%d/status" % port, timeout=10)
-        assert err.value.code == 404
-        # ... and not from another interface (where this machine has one).
-        outward = outward_address()
-        if outward:
-            with pytest.raises(OSError):
-                urllib.request.urlopen("http://%s:%d/health" % (outward, port), timeout=5)
+    script = """
+import socket, sys, urllib.error, urllib.request
+sys.path.insert(0, %r)
+from arcus import _tasks
+with _tasks._dask_client(None, 1, 10) as client:
+    info = client.scheduler_info()
+    addresses = [client.scheduler.address] + list(info["workers"])
+    assert all(a.startswith("tcp://127.0.0.1:") for a in addresses), addresses
+    port = info["services"]["dashboard"]  # the HTTP server: health checks only
+    assert port != 8787
+    try:
+        urllib.request.urlopen("http://127.0.0.1:%%d/status" %% port, timeout=10)
+        raise AssertionError("a dashboard is served")
+    except urllib.error.HTTPError as err:
+        assert err.code == 404, err.code
+    outward = %r
+    if outward:
+        try:
+            urllib.request.urlopen("http://%%s:%%d/health" %% (outward, port), timeout=5)
+            raise AssertionError("reachable from outside")
+        except urllib.error.URLError:
+            pass
+print("loopback only")
+""" % (str(repo / "bindings" / "python"), outward_address())
+    r = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0 and "loopback only" in r.stdout, r.stderr[-2000:]
 
 
 # ---- a context closed from another thread -------------------------------------------------
