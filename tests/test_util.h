@@ -118,6 +118,16 @@ class ArcusTest : public ::testing::Test {
     arcus_field_t* f = nullptr;
     return check(arcus_field_create_fisheye(ctx_, c.data(), radius, n0, &f), &f, "fish-eye field");
   }
+  // The standard atmosphere (flat or spherical) with inversion layers; `inv` must
+  // outlive the field's creation.
+  static arcus_atmosphere_desc atmosphere_desc(int spherical, const std::vector<arcus_inversion>& inv) {
+    arcus_atmosphere_desc d;
+    EXPECT_EQ(arcus_atmosphere_desc_init(&d), ARCUS_SUCCESS);
+    d.spherical = spherical;
+    d.inversion_count = static_cast<uint32_t>(inv.size());
+    d.inversions = inv.empty() ? nullptr : inv.data();
+    return d;
+  }
   static FieldPtr atmosphere(const arcus_atmosphere_desc& d) {
     arcus_field_t* f = nullptr;
     return check(arcus_field_create_atmosphere(ctx_, &d, &f), &f, "atmosphere field");
