@@ -46,35 +46,56 @@ uint64_t require_regular(const std::string& path) {
   return static_cast<uint64_t>(st.st_size);
 }
 
-std::string read_all(const std::string& path, uint64_t max_bytes, const char* bound_name) {
+RegularFile::RegularFile(const std::string& path) : path_(path) {
   require_regular(path);
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-  if (fd < 0) fail_io(path, "cannot open: " + errno_text(errno));
-  struct Closer {
-    int fd;
-    ~Closer() { ::close(fd); }
-  } closer{fd};
+  fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd_ < 0) fail_io(path, "cannot open: " + errno_text(errno));
   struct stat st {};
-  if (::fstat(fd, &st) != 0) fail_io(path, "cannot read: " + errno_text(errno));
-  require_regular_mode(path, st.st_mode);
-  const uint64_t size = static_cast<uint64_t>(st.st_size);
-  if (size > max_bytes)
-    fail_io(path, limits::bytes_text(double(size)) + " is more than the " + limits::bytes_text(double(max_bytes)) +
-                      " allowed (" + bound_name + " raises the bound)");
-  std::string text;
-  text.reserve(static_cast<size_t>(size));
-  char buf[65536];
+  if (::fstat(fd_, &st) != 0) {
+    const int err = errno;
+    ::close(fd_);
+    fail_io(path, "cannot read: " + errno_text(err));
+  }
+  if (!S_ISREG(st.st_mode)) {
+    ::close(fd_);
+    require_regular_mode(path, st.st_mode);
+  }
+  ::fcntl(fd_, F_SETFL, ::fcntl(fd_, F_GETFL) & ~O_NONBLOCK);
+  size_ = static_cast<uint64_t>(st.st_size);
+}
+
+RegularFile::~RegularFile() { ::close(fd_); }
+
+size_t RegularFile::read_some(char* dst, size_t bytes) {
   for (;;) {
-    const ssize_t n = ::read(fd, buf, sizeof buf);
-    if (n == 0) break;
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      fail_io(path, "cannot read: " + errno_text(errno));
-    }
-    if (text.size() + static_cast<size_t>(n) > max_bytes)  // it grew while being read
+    const ssize_t n = ::read(fd_, dst, bytes);
+    if (n >= 0) return static_cast<size_t>(n);
+    if (errno != EINTR) fail_io(path_, "cannot read: " + errno_text(errno));
+  }
+}
+
+void RegularFile::read_exact(char* dst, size_t bytes) {
+  while (bytes) {
+    const size_t n = read_some(dst, bytes);
+    if (n == 0) fail_io(path_, "the file ended early (it shrank while being read)");
+    dst += n;
+    bytes -= n;
+  }
+}
+
+std::string read_all(const std::string& path, uint64_t max_bytes, const char* bound_name) {
+  RegularFile file(path);
+  if (file.size() > max_bytes)
+    fail_io(path, limits::bytes_text(double(file.size())) + " is more than the " +
+                      limits::bytes_text(double(max_bytes)) + " allowed (" + bound_name + " raises the bound)");
+  std::string text;
+  text.reserve(static_cast<size_t>(file.size()));
+  char buf[65536];
+  while (const size_t n = file.read_some(buf, sizeof buf)) {
+    if (text.size() + n > max_bytes)  // it grew while being read
       fail_io(path, "grew past the " + limits::bytes_text(double(max_bytes)) + " allowed (" + bound_name +
                         " raises the bound)");
-    text.append(buf, static_cast<size_t>(n));
+    text.append(buf, n);
   }
   return text;
 }

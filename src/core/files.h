@@ -13,6 +13,28 @@ namespace arcus::files {
 // read: No such file or directory", "<path>: is a FIFO, not a regular file", ...
 uint64_t require_regular(const std::string& path);
 
+// A regular file open for reading: opened without blocking (a FIFO swapped in after a
+// check would otherwise wait for a writer) and checked again on the descriptor; closed
+// with the object.  Errors name the file as require_regular's do.
+class RegularFile {
+ public:
+  explicit RegularFile(const std::string& path);
+  ~RegularFile();
+  RegularFile(const RegularFile&) = delete;
+  RegularFile& operator=(const RegularFile&) = delete;
+
+  uint64_t size() const { return size_; }
+  // Reads up to `bytes` into `dst` (blocking, as for any regular file); 0 at the end.
+  size_t read_some(char* dst, size_t bytes);
+  // Reads exactly `bytes`: "<path>: the file ended early" if it shrank meanwhile.
+  void read_exact(char* dst, size_t bytes);
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+  uint64_t size_ = 0;
+};
+
 // The whole regular file at `path`, refused before reading when it is larger than
 // max_bytes ("<path>: 1.5 GiB is more than the 64 MiB allowed (<bound_name> raises
 // it)").  Opened without blocking and checked again on the open descriptor, since the

@@ -1,17 +1,12 @@
 #include "curved/fields.h"
 #include "curved/scene_desc.h"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <string>
 
 #include "core/error.h"
+#include "core/files.h"
 #include "core/format.h"
 #include "core/limits.h"
 
@@ -280,48 +275,23 @@ std::vector<double> read_grid_file(const char* path, int32_t type, size_t count)
   require_pointer(path, "path");
   require(type == ARCUS_FLOAT32 || type == ARCUS_FLOAT64,
           "type = " + std::to_string(type) + " is not ARCUS_FLOAT32 (0) or ARCUS_FLOAT64 (1)");
-  const std::string name = std::string("path: '") + path + "'";
-  // O_NONBLOCK: opening a FIFO must not wait for a writer; fstat then refuses it.
-  const int fd = ::open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  if (fd < 0) fail(ARCUS_ERROR_IO, name + ": cannot open: " + std::strerror(errno));
-  struct Closer {
-    int fd;
-    ~Closer() { ::close(fd); }
-  } closer{fd};
-  struct stat st;
-  if (::fstat(fd, &st) != 0) fail(ARCUS_ERROR_IO, name + ": cannot stat: " + std::strerror(errno));
-  if (S_ISDIR(st.st_mode)) fail(ARCUS_ERROR_IO, name + " is a directory, not a grid file");
-  if (!S_ISREG(st.st_mode))
-    fail(ARCUS_ERROR_IO, name + " is not a regular file (" +
-                             (S_ISFIFO(st.st_mode) ? "a FIFO" : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "a device"
-                                                                                                            : "special") +
-                             ")");
+  files::RegularFile file(path);  // a FIFO or a device is refused without blocking
   const size_t width = type == ARCUS_FLOAT32 ? 4 : 8;
-  const size_t size = static_cast<size_t>(st.st_size);
-  if (size != count * width)
-    fail(ARCUS_ERROR_IO, name + " holds " + std::to_string(size) + " bytes, but " + std::to_string(count) +
-                             " values of " + std::to_string(width) + " bytes need " + std::to_string(count * width));
-  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
-  limits::require_host_memory(8.0 * double(count), name + ": " + std::to_string(count) + " values");
+  if (file.size() != count * width)
+    fail(ARCUS_ERROR_IO, std::string(path) + ": holds " + std::to_string(file.size()) + " bytes, but " +
+                             std::to_string(count) + " values of " + std::to_string(width) + " bytes need " +
+                             std::to_string(count * width));
+  limits::require_host_memory(8.0 * double(count), std::string(path) + ": " + std::to_string(count) + " values");
   std::vector<double> values(count);
   // Read straight into the values (float32: through a small buffer), so the file is
   // never held twice.
-  auto read_all = [&](char* dst, size_t bytes) {
-    while (bytes) {
-      const ssize_t got = ::read(fd, dst, bytes);
-      if (got < 0 && errno == EINTR) continue;
-      if (got <= 0) fail(ARCUS_ERROR_IO, name + ": reading failed" + (got < 0 ? std::string(": ") + std::strerror(errno) : " (file shrank)"));
-      dst += got;
-      bytes -= static_cast<size_t>(got);
-    }
-  };
   if (type == ARCUS_FLOAT64) {
-    read_all(reinterpret_cast<char*>(values.data()), count * 8);
+    file.read_exact(reinterpret_cast<char*>(values.data()), count * 8);
   } else {
     std::vector<float> chunk(size_t(1) << 16);
     for (size_t done = 0; done < count;) {
       const size_t n = std::min(chunk.size(), count - done);
-      read_all(reinterpret_cast<char*>(chunk.data()), n * 4);
+      file.read_exact(reinterpret_cast<char*>(chunk.data()), n * 4);
       std::copy(chunk.begin(), chunk.begin() + static_cast<std::ptrdiff_t>(n), values.begin() + static_cast<std::ptrdiff_t>(done));
       done += n;
     }
