@@ -368,6 +368,36 @@ TEST(ImageRead, ReadsFloatImagesExactlyTopRowFirst) {
   EXPECT_EQ(arcus_image_read(nullptr, &width, &height, nullptr, 0), ARCUS_ERROR_INVALID_ARGUMENT);
 }
 
+// arcus_image_write picks the format from the extension; read back, each keeps what its
+// format can: EXR the floats exactly, Radiance HDR 8 bits of mantissa per pixel (RGBE:
+// relative error below 2^-7 of the largest channel), PNG the 8-bit sRGB quantisation
+// (half a step of the encoded value, at most 1/255 · 0.0045 near black and 2 % near 1),
+// JPEG only approximately (lossy: a few code values).  Unknown extensions are refused.
+TEST(ImageWrite, TheFormatFollowsTheExtension) {
+  const auto dir = std::filesystem::temp_directory_path();
+  const uint32_t w = 4, h = 2;
+  std::vector<float> rgb(w * h * 3);
+  for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = 0.05f + 0.9f * float(i) / float(rgb.size());
+  struct Case { const char* name; double tolerance; };
+  for (const Case c : {Case{"a.exr", 0.0}, Case{"a.hdr", 1.0 / 128}, Case{"a.PNG", 0.02}, Case{"a.jpg", 0.1}}) {
+    const std::string path = (dir / (std::string("arcus_test_write_") + c.name)).string();
+    ASSERT_EQ(arcus_image_write(path.c_str(), w, h, rgb.data()), ARCUS_SUCCESS) << arcus_last_error();
+    std::vector<float> back(rgb.size());
+    uint32_t bw = 0, bh = 0;
+    ASSERT_EQ(arcus_image_read(path.c_str(), &bw, &bh, back.data(), back.size()), ARCUS_SUCCESS) << arcus_last_error();
+    EXPECT_EQ(bw, w);
+    EXPECT_EQ(bh, h);
+    for (size_t i = 0; i < rgb.size(); ++i) EXPECT_NEAR(back[i], rgb[i], c.tolerance) << c.name << " value " << i;
+    std::filesystem::remove(path);
+  }
+  const std::string bad = (dir / "arcus_test_write.gif").string();
+  EXPECT_EQ(arcus_image_write(bad.c_str(), w, h, rgb.data()), ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(arcus_last_error()).find("arcus_test_write.gif"), std::string::npos);
+  rgb[5] = std::nanf("");
+  EXPECT_EQ(arcus_image_write((dir / "arcus_test_write_nan.png").string().c_str(), w, h, rgb.data()),
+            ARCUS_ERROR_NOT_FINITE);
+}
+
 TEST_F(RainbowSky, ASkyBeyondTheHostsMemoryIsRefusedBeforeAllocating) {
   // 16384 x 16384 pixels: 11 GiB of images on the host, held to the memory available
   // (a bound of 1 GiB here) before anything is allocated.

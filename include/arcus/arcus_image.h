@@ -1,6 +1,7 @@
 /*
- * arcus images: reading the image files the library takes as input (sky images), so
- * that C, Python and the command-line tools read them one way.  Include arcus.h.
+ * arcus images: reading the image files the library takes as input (sky images) and
+ * writing images in the format their file name asks for, so that C, Python and the
+ * command-line tools read and write them one way.  Include arcus.h.
  */
 #ifndef ARCUS_IMAGE_H
 #define ARCUS_IMAGE_H
@@ -25,6 +26,14 @@ extern "C" {
  * ARCUS_ERROR_OUT_OF_MEMORY (more than the host has available). */
 ARCUS_API arcus_status arcus_image_read(const char* path, uint32_t* width, uint32_t* height, float* rgb,
                                         size_t rgb_count);
+
+/* Writes width × height linear RGB pixels (3 floats a pixel, top row first) to `path`
+ * in the format its extension names: .exr and .hdr keep the floats as they are; .png
+ * and .jpg/.jpeg are 8-bit, sRGB-encoded and clamped to [0, 1] (JPEG at quality 92).
+ * Errors: ARCUS_ERROR_INVALID_ARGUMENT (another extension, naming the path; a zero
+ * size), ARCUS_ERROR_NOT_FINITE (a NaN or infinite value, naming the pixel),
+ * ARCUS_ERROR_IO (the file cannot be written). */
+ARCUS_API arcus_status arcus_image_write(const char* path, uint32_t width, uint32_t height, const float* rgb);
 
 #ifdef __cplusplus
 }

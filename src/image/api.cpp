@@ -27,3 +27,19 @@ arcus_status arcus_image_read(const char* path, uint32_t* width, uint32_t* heigh
     std::copy(im.pixels.begin(), im.pixels.end(), rgb);
   });
 }
+
+arcus_status arcus_image_write(const char* path, uint32_t width, uint32_t height, const float* rgb) {
+  return without_context([&] {
+    require_pointer(path, "path");
+    require_pointer(rgb, "rgb");
+    require(width > 0 && height > 0, "width, height: " + std::to_string(width) + " x " + std::to_string(height) +
+                                         " is not an image");
+    image::Image im;
+    im.width = static_cast<int>(width);
+    im.height = static_cast<int>(height);
+    im.channels = {"R", "G", "B"};
+    im.pixels.assign(rgb, rgb + size_t(width) * height * 3);
+    image::require_finite_pixels(im.pixels, im.width, "RGB", std::string("rgb (") + path + ")");
+    image::write_by_extension(path, im);
+  });
+}

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 #include <new>
 #include <set>
@@ -140,7 +141,10 @@ void write_exr(const std::string& path, const Image& image, ExrPixels pixels) {
   write(path, "openexr", spec, OIIO::TypeDesc::FLOAT, image.pixels.data());
 }
 
-void write_png(const std::string& path, const Image& linear_rgb, double exposure) {
+namespace {
+
+// 8-bit sRGB of the channels R, G, B times `exposure`, written by OIIO's `format` writer.
+void write_8bit(const std::string& path, const char* format, const Image& linear_rgb, double exposure) {
   check(linear_rgb, path);
   require(std::isfinite(exposure) && exposure > 0.0, path + ": exposure " + number(exposure) + " is not positive");
   int source[3];
@@ -155,7 +159,30 @@ void write_png(const std::string& path, const Image& linear_rgb, double exposure
       bytes[p * 3 + c] = spectral::srgb_encode_8bit(exposure * linear_rgb.pixels[p * n + source[c]]);
   OIIO::ImageSpec spec(linear_rgb.width, linear_rgb.height, 3, OIIO::TypeDesc::UINT8);
   spec.attribute("oiio:ColorSpace", "sRGB");
-  write(path, "png", spec, OIIO::TypeDesc::UINT8, bytes.data());
+  if (std::string(format) == "jpeg") spec.attribute("Compression", "jpeg:92");
+  write(path, format, spec, OIIO::TypeDesc::UINT8, bytes.data());
+}
+
+}  // namespace
+
+void write_png(const std::string& path, const Image& linear_rgb, double exposure) {
+  write_8bit(path, "png", linear_rgb, exposure);
+}
+
+void write_by_extension(const std::string& path, const Image& linear_rgb) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext == ".exr") return write_exr(path, linear_rgb);
+  if (ext == ".png") return write_8bit(path, "png", linear_rgb, 1.0);
+  if (ext == ".jpg" || ext == ".jpeg") return write_8bit(path, "jpeg", linear_rgb, 1.0);
+  if (ext == ".hdr") {
+    check(linear_rgb, path);
+    require(linear_rgb.channels.size() == 3, path + ": expected 3 channels (R, G, B)");
+    OIIO::ImageSpec spec(linear_rgb.width, linear_rgb.height, 3, OIIO::TypeDesc::FLOAT);
+    return write(path, "hdr", spec, OIIO::TypeDesc::FLOAT, linear_rgb.pixels.data());
+  }
+  fail(ARCUS_ERROR_INVALID_ARGUMENT,
+       "path: " + path + ": unknown image format \"" + ext + "\" (expected .exr, .hdr, .png, .jpg or .jpeg)");
 }
 
 Image read_channels(const std::string& path) { return read_file(path).image; }

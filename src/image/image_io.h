@@ -29,6 +29,11 @@ void write_exr(const std::string& path, const Image& image, ExrPixels pixels = E
 // encoded with the sRGB transfer function, clamped to [0, 1] and rounded.
 void write_png(const std::string& path, const Image& linear_rgb, double exposure = 1.0);
 
+// Writes linear RGB to a file whose format follows its extension: .exr and .hdr keep
+// the floats (linear), .png and .jpg/.jpeg are 8-bit sRGB (as write_png, exposure 1).
+// Another extension is ARCUS_ERROR_INVALID_ARGUMENT naming the path and the formats.
+void write_by_extension(const std::string& path, const Image& linear_rgb);
+
 // Reads the first image of any file OIIO reads as channels "R", "G", "B", linear float:
 // integer files (PNG, JPEG, 8/16-bit TIFF) are taken as sRGB-encoded and decoded with
 // the inverse transfer function unless they declare themselves linear; float files

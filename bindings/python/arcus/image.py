@@ -1,4 +1,4 @@
-"""Input images, read by the library (OpenImageIO) as every engine reads them."""
+"""Images read and written by the library (OpenImageIO) as every engine reads and writes them."""
 
 from ctypes import byref, c_float, c_uint32
 
@@ -6,6 +6,7 @@ import numpy as np
 
 from . import _lib
 from ._args import to_path
+from ._errors import ArgumentError
 from ._lib import lib
 
 
@@ -24,3 +25,16 @@ def read(path):
     # what size it read.
     _lib.check(lib.arcus_image_read(encoded, byref(width), byref(height), _lib.ptr(rgb, c_float), rgb.size))
     return rgb[: height.value * width.value * 3].reshape(height.value, width.value, 3)
+
+
+def write(path, rgb):
+    """Writes ``rgb``, an (height, width, 3) array of linear RGB, top row first, to
+    ``path`` in the format its extension names: ``.exr`` and ``.hdr`` keep the values
+    (linear float), ``.png`` and ``.jpg`` are 8-bit sRGB clamped to [0, 1].  Another
+    extension raises :class:`arcus.ArgumentError`; a NaN or infinite value
+    :class:`arcus.Error` (``ARCUS_ERROR_NOT_FINITE``)."""
+    encoded = to_path(path, "path")
+    pixels = np.ascontiguousarray(rgb, dtype=np.float32)
+    if pixels.ndim != 3 or pixels.shape[2] != 3 or pixels.shape[0] < 1 or pixels.shape[1] < 1:
+        raise ArgumentError("rgb: expected an (height, width, 3) array, got shape %r" % (pixels.shape,))
+    _lib.check(lib.arcus_image_write(encoded, pixels.shape[1], pixels.shape[0], _lib.ptr(pixels, c_float)))
