@@ -25,7 +25,6 @@ import csv
 import json
 import math
 import sys
-import time
 from pathlib import Path
 
 # The arcus package of this source tree, as tests/python/conftest.py finds it.
@@ -35,6 +34,7 @@ import numpy as np  # noqa: E402
 
 import arcus  # noqa: E402  (needs the sys.path entry above)
 import arcus.ocean as ocean  # noqa: E402
+from arcus.progress import Progress  # noqa: E402
 
 EXIT_ERROR = 2
 
@@ -124,38 +124,10 @@ def out_dir(args, doc):
 # ---- progress -------------------------------------------------------------------------
 
 
-class ProgressBar:
-    """A bar on stderr, for a terminal only: the library's progress callback."""
-
-    def __init__(self, what, quiet):
-        self.what = what
-        self.shown = not quiet and sys.stderr.isatty()
-        self.start = time.monotonic()
-        self.last = -1
-
-    def __call__(self, fraction):
-        if self.shown:
-            percent = int(100 * fraction)
-            if percent != self.last:
-                self.last = percent
-                filled = percent * 40 // 100
-                sys.stderr.write("\r%s [%s%s] %3d%% %6.1f s" % (self.what, "#" * filled, "." * (40 - filled),
-                                                               percent, time.monotonic() - self.start))
-                sys.stderr.flush()
-        return False  # never cancels
-
-    def done(self):
-        if self.shown:
-            sys.stderr.write("\n")
-
-
 def traced(ctx, doc, args, what):
     water, lights, kw = trace_args(doc, args.photons)
-    bar = ProgressBar(what, args.quiet)
-    try:
+    with Progress(what, quiet=args.quiet) as bar:
         return ocean.trace_photons(water, lights, progress=bar, context=ctx, **kw)
-    finally:
-        bar.done()
 
 
 # ---- trace ----------------------------------------------------------------------------
@@ -336,12 +308,9 @@ def cmd_render(ctx, doc, args):
     if exr is None and png is None:
         d = out_dir(args, doc)
         exr, png = str(d / "image.exr"), str(d / "image.png")
-    bar = ProgressBar("rendering", args.quiet)
-    try:
+    with Progress("rendering", quiet=args.quiet) as bar:
         result = ocean.render(args.scene, photons=args.photons, k=args.k, steps=args.steps, estimator=args.estimator,
                               exr=exr, png=png, progress=bar, context=ctx)
-    finally:
-        bar.done()
     h, w = result.image.shape[:2]
     stats = ", ".join("%s %.3g" % (k, v) for k, v in result.stats.items() if isinstance(v, float))
     print("%s: %dx%d; %s; wrote %s" % (doc["name"], w, h, stats, " and ".join(p for p in (exr, png) if p)))

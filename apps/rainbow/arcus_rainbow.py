@@ -46,6 +46,7 @@ import numpy as np  # noqa: E402
 import arcus  # noqa: E402  (needs the sys.path entry above)
 import arcus.mie as mie  # noqa: E402
 import arcus.rainbow as rainbow  # noqa: E402
+from arcus.progress import Progress  # noqa: E402
 
 EXIT_ERROR = 2
 PLOT_RANGE = (120.0, 145.0)  # degrees: both bows and Alexander's dark band
@@ -144,45 +145,6 @@ def index_of(material, nm, temperature):
 
 
 # ---- progress -------------------------------------------------------------------------
-
-
-class ProgressBar:
-    """A bar over the wavelengths on stderr (tqdm when installed), for a terminal only."""
-
-    def __init__(self, what, total, quiet):
-        self.what, self.total = what, total
-        self.shown = not quiet and sys.stderr.isatty()
-        self.start = time.monotonic()
-        self.done_count = 0
-        self.tqdm = None
-        if self.shown:
-            try:
-                from tqdm import tqdm
-                self.tqdm = tqdm(total=total, desc=what, unit="λ", file=sys.stderr)
-            except ImportError:
-                self._draw()
-
-    def _draw(self):
-        filled = self.done_count * 40 // max(1, self.total)
-        sys.stderr.write("\r%s [%s%s] %d/%d %6.1f s" % (self.what, "#" * filled, "." * (40 - filled), self.done_count,
-                                                       self.total, time.monotonic() - self.start))
-        sys.stderr.flush()
-
-    def step(self):
-        self.done_count += 1
-        if not self.shown:
-            return
-        if self.tqdm is not None:
-            self.tqdm.update(1)
-        else:
-            self._draw()
-
-    def close(self):
-        if self.shown:
-            if self.tqdm is not None:
-                self.tqdm.close()
-            else:
-                sys.stderr.write("\n")
 
 
 # ---- output ---------------------------------------------------------------------------
@@ -337,14 +299,14 @@ def cmd_table(args):
     two_d = phi is not None and np.ndim(phi) > 0
     results = []
     with arcus.Context() as ctx:
-        bar = ProgressBar("casting", len(wl), args.quiet)
+        bar = Progress("casting", total=len(wl), unit="λ", quiet=args.quiet)
         try:
             for nm in wl:
                 results.append(rainbow.phase_function(
                     particle, float(nm), theta, phi=phi, grid=args.grid, max_bounces=args.max_bounces,
                     material=args.material, temperature=args.temperature, coherent=not args.incoherent, caustics=args.caustics,
                     context=ctx))
-                bar.step()
+                bar.advance()
         finally:
             bar.close()
         info = particle.info(ctx)
@@ -395,7 +357,7 @@ def cmd_mie(args):
     theta = range_of(*args.theta, name="--theta")
     rows = dict(par=[], perp=[], per=[], n=[], q_ext=[], q_sca=[], q_back=[], g=[])
     start = time.monotonic()
-    bar = ProgressBar("Lorenz–Mie", len(wl), args.quiet)
+    bar = Progress("Lorenz–Mie", total=len(wl), unit="λ", quiet=args.quiet)
     try:
         for nm in wl:
             n = index_of(args.material, float(nm), args.temperature)
@@ -407,7 +369,7 @@ def cmd_mie(args):
             rows["n"].append(n)
             if args.debye is not None:
                 rows["per"].append(mie.debye(radius, float(nm), theta, n=n, max_p=args.debye).unpolarized)
-            bar.step()
+            bar.advance()
     finally:
         bar.close()
     par, perp = np.stack(rows["par"]), np.stack(rows["perp"])

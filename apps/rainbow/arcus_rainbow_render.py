@@ -16,35 +16,15 @@ Examples:
 
 import argparse
 import sys
-import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "bindings" / "python"))
 
 import arcus  # noqa: E402  (needs the sys.path entry above)
 from arcus import sky  # noqa: E402
+from arcus.progress import Progress  # noqa: E402
 
 EXIT_ERROR = 2
-
-
-class Bar:
-    """The render's progress on stderr, for a terminal only."""
-
-    def __init__(self, quiet):
-        self.shown = not quiet and sys.stderr.isatty()
-        self.start = time.monotonic()
-
-    def __call__(self, fraction):
-        if self.shown:
-            filled = int(fraction * 40)
-            sys.stderr.write("\rrendering [%s%s] %3d%% %6.1f s" % ("#" * filled, "." * (40 - filled), fraction * 100,
-                                                                 time.monotonic() - self.start))
-            sys.stderr.flush()
-        return False
-
-    def close(self):
-        if self.shown:
-            sys.stderr.write("\n")
 
 
 def parser():
@@ -76,7 +56,7 @@ def main(argv=None):
         if path:
             Path(path).parent.mkdir(parents=True, exist_ok=True)
     client = args.scheduler if args.scheduler else (None if args.workers else "serial")
-    bar = Bar(args.quiet)
+    bar = Progress("rendering " + Path(args.scene).stem, quiet=args.quiet)
     try:
         result = sky.render(args.scene, exr=args.exr, png=args.png, width=args.width, height=args.height,
                             sun_samples=args.sun_samples, march_steps=args.march_steps, cache_dir=args.cache,

@@ -5,7 +5,6 @@ import contextlib
 import hashlib
 import json
 import os
-import sys
 import threading
 import time
 from dataclasses import dataclass
@@ -131,30 +130,16 @@ def _dask_client(client, workers, connect_timeout):
         cluster.close()
 
 
-def _text_bar(done, total, started):
-    """The serial loop's progress on stderr (Dask draws its own for a cluster)."""
-    width = 40
-    frac = done / total if total else 1.0
-    sys.stderr.write("\r[%-*s] | %3d%% Completed | %.1fs" % (width, "#" * int(width * frac), 100 * frac,
-                                                             time.monotonic() - started))
-    if done == total:
-        sys.stderr.write("\n")
-    sys.stderr.flush()
-
-
-def _run_serial(function, tasks, finish, errors, progress, **_):
+def _run_serial(function, tasks, finish, errors, **_):
     """Runs ``tasks`` (digest -> spec) here, one after another."""
-    started = time.monotonic()
-    for n, (digest, spec) in enumerate(tasks.items()):
+    for digest, spec in tasks.items():
         try:
             finish(digest, function(spec))
         except Exception as exc:
             errors.append((digest, exc))
-        if progress:
-            _text_bar(n + 1, len(tasks), started)
 
 
-def _run_on_dask(function, tasks, finish, errors, progress, *, client, workers, connect_timeout):
+def _run_on_dask(function, tasks, finish, errors, *, client, workers, connect_timeout):
     """Runs ``tasks`` (digest -> spec) on Dask, finishing each as it arrives; on an
     interrupt the tasks still pending are cancelled."""
     import distributed
@@ -163,13 +148,6 @@ def _run_on_dask(function, tasks, finish, errors, progress, *, client, workers, 
         futures = dask_client.map(function, list(tasks.values()), key=["%s-%s" % (prefix, d) for d in tasks],
                                   pure=False)
         digest_of = {f.key: d for f, d in zip(futures, tasks)}
-        bar = None
-        if progress:
-            # distributed.progress blocks until the futures finish, so it draws from a
-            # thread while this one caches each result as it arrives.
-            bar = threading.Thread(target=distributed.progress, args=(futures,), daemon=True,
-                                   kwargs=dict(notebook=False, scheduler=dask_client.scheduler.address))
-            bar.start()
         try:
             # with_results: the results are fetched on the client's loop as they come,
             # not one round trip at a time from here
@@ -184,9 +162,6 @@ def _run_on_dask(function, tasks, finish, errors, progress, *, client, workers, 
         except BaseException:  # interrupted: what finished is cached, the rest is dropped
             dask_client.cancel(futures)
             raise
-        finally:
-            if bar is not None:
-                bar.join(timeout=5)
 
 
 def map_tasks(function, specs, *, cache_dir=None, client=None, workers=None, progress=False,
@@ -208,7 +183,8 @@ def map_tasks(function, specs, *, cache_dir=None, client=None, workers=None, pro
         client: None (a LocalCluster here), a ``distributed.Client``, a scheduler
             address, or "serial" (a loop in this process).
         workers: the LocalCluster's worker processes (default: os.cpu_count()); 0: serial.
-        progress: show a progress bar (Dask's ``distributed.progress``; stderr when serial).
+        progress: show a progress bar on a terminal (:class:`arcus.progress.Progress`):
+            what is computed, how many results were cached, done/total and an ETA.
         connect_timeout: seconds to wait for a scheduler given by address.
     """
     started = time.monotonic()
@@ -247,15 +223,28 @@ def map_tasks(function, specs, *, cache_dir=None, client=None, workers=None, pro
         if payloads[d] is None:
             missing.setdefault(d, (k, s))
 
+    bar = None
+    if progress and missing:
+        from .progress import Progress
+        what = getattr(function, "what", name)  # e.g. "phase tables (one particle, one wavelength)"
+        bar = Progress("%s: %d cached, computing %d%s" % (what, cached, len(missing), "" if serial else " on Dask"),
+                       total=len(missing), unit="tasks")
+
     def finish(digest, result):
         payloads[digest] = _payload(result, name)
         cache.write(digest, missing[digest][0], payloads[digest])
+        if bar is not None:
+            bar.advance()
 
     errors = []
     if missing:
         run = _run_serial if serial else _run_on_dask
-        run(function, {d: s for d, (_, s) in missing.items()}, finish, errors, progress, client=client, workers=workers,
-            connect_timeout=connect_timeout)
+        try:
+            run(function, {d: s for d, (_, s) in missing.items()}, finish, errors, client=client, workers=workers,
+                connect_timeout=connect_timeout)
+        finally:
+            if bar is not None:
+                bar.close()
     if errors:
         order = list(missing)
         digest, exc = min(errors, key=lambda e: order.index(e[0]))

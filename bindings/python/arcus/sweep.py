@@ -267,6 +267,8 @@ def _phase_task(task):
                 cross_section=intercepted * float(np.sum(r.stats["scattered"])), extinction=2.0 * intercepted,
                 intercepted=intercepted, remaining=r.stats["remaining"])
 
+_phase_task.what = "phase tables (one particle, one wavelength each)"  # names the progress bar
+
 
 def phase_tables(particles, wavelengths, theta, phi=None, *, grid=1000, max_bounces=3, cache_dir=None, client=None,
                  workers=None, progress=False, connect_timeout=CONNECT_TIMEOUT):
@@ -373,6 +375,8 @@ def _ocean_task(task):
     image = ocean.render(task["scene"], context=_worker_context(), **task["overrides"]).image
     return dict(image=image)
 
+_ocean_task.what = "ocean views"  # names the progress bar
+
 
 def ocean_grid(scene, chlorophyll, a_d400, a_y440, *, width=64, height=48, photons=None, k=None, steps=None,
                estimator=None, cache_dir=None, client=None, workers=None, progress=False,
@@ -442,6 +446,8 @@ def _frame_task(task):
     """One frame of :func:`frames`: the render scene's image."""
     result = _worker_context().render(task["scene"], techniques=task["techniques"], base_dir=task["base_dir"])
     return dict(image=result.image)
+
+_frame_task.what = "frames"  # names the progress bar
 
 
 def frames(scene, parameter, values, *, width=None, height=None, techniques=None, base_dir=None, cache_dir=None,
