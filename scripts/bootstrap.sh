@@ -23,12 +23,12 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 PY=${PYTHON:-python3}
-if ! "$PY" -c 'import numpy, scipy, pytest, matplotlib, dask.distributed' 2>/dev/null; then
-  echo "bootstrap: installing Python packages from PyPI (numpy scipy pytest matplotlib dask[distributed])"
+if ! "$PY" -c 'import numpy, scipy, pytest, matplotlib, tqdm, dask.distributed, scikit_build_core' 2>/dev/null; then
+  echo "bootstrap: installing Python packages from PyPI (numpy scipy pytest matplotlib tqdm dask[distributed] scikit-build-core)"
   if ! "$PY" -m pip --version > /dev/null 2>&1; then
     DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends python3-pip
   fi
-  pip_install=("$PY" -m pip install -q --disable-pip-version-check numpy scipy pytest matplotlib "dask[distributed]")
+  pip_install=("$PY" -m pip install -q --disable-pip-version-check numpy scipy pytest matplotlib tqdm "dask[distributed]" scikit-build-core)
   # Debian's own python3 refuses pip installs into it (PEP 668) unless told otherwise.
   "${pip_install[@]}" 2> /dev/null || "${pip_install[@]}" --break-system-packages
 fi

@@ -24,6 +24,7 @@ import argparse
 import csv
 import json
 import math
+import os
 import sys
 from pathlib import Path
 
@@ -320,7 +321,8 @@ def cmd_render(ctx, doc, args):
 
 
 def parser():
-    p = argparse.ArgumentParser(prog="arcus_ocean.py", description=__doc__.split("\n\n")[0],
+    p = argparse.ArgumentParser(prog=os.environ.get("ARCUS_PROG", "arcus_ocean.py"),
+                                description=__doc__.split("\n\n")[0],
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = p.add_subparsers(dest="command", required=True)
 

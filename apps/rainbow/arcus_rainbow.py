@@ -34,6 +34,7 @@ print the library's message and exit with status 2.
 """
 import argparse
 import math
+import os
 import sys
 import time
 from pathlib import Path
@@ -397,7 +398,7 @@ def cmd_mie(args):
 
 
 def parser():
-    p = argparse.ArgumentParser(prog="arcus_rainbow.py", description=__doc__.split("\n\n")[0],
+    p = argparse.ArgumentParser(prog=os.environ.get("ARCUS_PROG", "arcus_rainbow.py"), description=__doc__.split("\n\n")[0],
                                 formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
     sub = p.add_subparsers(dest="command", required=True)
 

@@ -34,7 +34,7 @@ EXIT_FAILED, EXIT_BAD_SPEC = 1, 2
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(prog="arcus_sweep.py", description=__doc__.split("\n\n")[0])
+    parser = argparse.ArgumentParser(prog=os.environ.get("ARCUS_PROG", "arcus_sweep.py"), description=__doc__.split("\n\n")[0])
     parser.add_argument("spec", help="the sweep, a JSON file (scenes/sweeps/*.json)")
     where = parser.add_mutually_exclusive_group()
     where.add_argument("--scheduler", metavar="ADDRESS", help="a running Dask scheduler, e.g. tcp://host:8786")

@@ -1,10 +1,11 @@
-"""arcus.rainbow.render / arcus.sky and apps/rainbow/arcus_rainbow_render.py: a rendered
+"""arcus.rainbow.render / arcus.sky and `arcus render` on a rainbow scene: a rendered
 bow against its own phase table (the brightest red row where the table's red peaks, to
 the pixel), Alexander's dark band, the secondary's reversed colours, the volume table's
 energy against the drops' cross-sections, size distributions, and bad input (explained,
 not crashed).  Small tables (8 wavelengths, grid 300) keep it to seconds on two cores."""
 
 import math
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -16,7 +17,8 @@ import arcus
 import arcus.mie as mie
 from arcus import sky
 
-TOOL = Path(__file__).resolve().parents[2] / "apps" / "rainbow" / "arcus_rainbow_render.py"
+from conftest import BINDINGS
+
 SCENES = Path(__file__).resolve().parents[2] / "scenes" / "rainbow"
 WIDTH, HEIGHT, SPAN = 41, 401, 40.0  # a strip of 40° up the sky, 0.1° a row
 
@@ -185,15 +187,16 @@ def test_command_line_writes_images_and_explains_errors(tmp_path):
     scene["image"].update(width=16, height=12)
     path = tmp_path / "scene.json"
     path.write_text(json.dumps(scene))
-    out = subprocess.run([sys.executable, str(TOOL), str(path), "-o", str(tmp_path / "sky.exr"), "--png",
-                          str(tmp_path / "sky.png"), "--cache", str(tmp_path / "cache"), "--quiet"],
-                         capture_output=True, text=True, timeout=300)
+    env = dict(os.environ, PYTHONPATH=str(BINDINGS), ARCUS_CACHE_DIR=str(tmp_path / "cache"))
+    command = [sys.executable, "-m", "arcus.cli", "render", str(path), "--quiet"]
+    out = subprocess.run(command + ["-o", str(tmp_path / "sky.exr"), "-o", str(tmp_path / "sky.png")],
+                         capture_output=True, text=True, timeout=300, env=env)
     assert out.returncode == 0, out.stderr
     assert (tmp_path / "sky.exr").stat().st_size > 0 and (tmp_path / "sky.png").stat().st_size > 0
     assert "wrote" in out.stdout
     scene["sun"]["elevation_deg"] = -5
     path.write_text(json.dumps(scene))
-    bad = subprocess.run([sys.executable, str(TOOL), str(path), "--png", str(tmp_path / "bad.png"), "--cache",
-                          str(tmp_path / "cache"), "--quiet"], capture_output=True, text=True, timeout=300)
+    bad = subprocess.run(command + ["-o", str(tmp_path / "bad.png")], capture_output=True, text=True, timeout=300,
+                         env=env)
     assert bad.returncode == 2 and "below the horizon" in bad.stderr
     assert not (tmp_path / "bad.png").exists()

@@ -101,3 +101,11 @@ def render(scene, techniques=None, frames=1, exr=None, png=None, device=DEVICE_D
     numpy, hits, figures)."""
     with Context(device) as ctx:
         return ctx.render(scene, techniques=techniques, frames=frames, exr=exr, png=png, base_dir=base_dir)
+
+
+def bundled_scene(name):
+    """The path of a scene shipped with arcus, by name ("inferior_mirage",
+    "rainbow/halo", "ocean/atlantic"), wherever arcus is installed; relative file names
+    inside a scene resolve against its own folder, so it works from any directory."""
+    from .cli.resources import scene
+    return scene(name)

@@ -181,6 +181,7 @@ _PROTOTYPES = {
         _status, [_handle, POINTER(c_uint32), POINTER(c_uint32), POINTER(ctypes.c_float), POINTER(ctypes.c_float),
                   POINTER(ctypes.c_float)]),
     "arcus_job_write_rainbow_image": (_status, [_handle, c_char_p, c_char_p]),
+    "arcus_image_write": (_status, [c_char_p, c_uint32, c_uint32, POINTER(ctypes.c_float)]),
     "arcus_image_read": (_status, [c_char_p, POINTER(c_uint32), POINTER(c_uint32), POINTER(ctypes.c_float),
                                    ctypes.c_size_t]),
     "arcus_mie": (
@@ -213,6 +214,8 @@ def _candidates():
     offered nothing, for the error message.  A generator, so that the slow
     find_library (it runs ldconfig) only runs when the source tree has no library.
     """
+    # `pip install .` puts the library inside the package (pyproject.toml).
+    yield "the package's own (pip install .)", str(Path(__file__).resolve().parent / "lib" / _LIBRARY_NAME)
     root = _source_root()
     if root is None:
         yield "source tree", None
@@ -237,8 +240,9 @@ def _open(path):
 def _how_to_fix():
     root = _source_root() or "<arcus source>"
     return (
-        "Build the library (cmake -S {0} -B {0}/build -DCMAKE_BUILD_TYPE=Release && cmake --build {0}/build) "
-        "or set ARCUS_LIBRARY to the path of libarcus.".format(root)
+        "Install arcus with `pip install {0}` (it builds the library), build it (cmake -S {0} -B {0}/build "
+        "-DCMAKE_BUILD_TYPE=Release && cmake --build {0}/build) or set ARCUS_LIBRARY to the path of libarcus."
+        .format(root)
     )
 
 
@@ -246,8 +250,8 @@ def load():
     """Loads libarcus; returns (ctypes.CDLL, the path or name it was loaded from).
 
     Order: the ARCUS_LIBRARY environment variable (authoritative: if it is set and
-    unusable that is an error, never silently replaced by another build), a build in
-    the source tree, an installed library.  Raises LibraryNotFoundError listing every
+    unusable that is an error, never silently replaced by another build), the one
+    installed inside the package, a build in the source tree, an installed library.  Raises LibraryNotFoundError listing every
     place tried and why each failed.
     """
     explicit = os.environ.get("ARCUS_LIBRARY")

@@ -459,7 +459,8 @@ class Context:
         self._check(lib.arcus_scene_load(ctx, encoded, byref(out)))
         return Scene(self, _Handle(out, lib.arcus_scene_release))
 
-    def render(self, path, techniques=None, frames=1, exr=None, png=None, base_dir="."):
+    def render(self, path, techniques=None, frames=1, exr=None, png=None, base_dir=".", width=None, height=None,
+               progress=None):
         """Renders a render scene: ``path`` names a scene file with a "camera", or is a
         dict of the same schema built in Python (its relative file names are read
         against ``base_dir``, the current directory by default).
@@ -467,7 +468,8 @@ class Context:
         ``techniques``: None (the scene's own), or names among "smart_step", "symmetry",
         "undersample", "path_cache"; ``frames``: frames rendered with the camera at rest
         (the result is the last one's).  ``exr``/``png``: optional files to write.
-        Returns a :class:`RenderResult`.  Raises arcus.Error with the library's message
+        ``width``/``height`` override the camera's image size (the field of view stays);
+        ``progress(fraction)`` sees each frame's progress.  Returns a :class:`RenderResult`.  Raises arcus.Error with the library's message
         (a scene error names the file and the key).
         """
         frames = to_int(frames, "frames", 1, 100000)
@@ -480,7 +482,8 @@ class Context:
             with tempfile.NamedTemporaryFile("w", suffix=".json", dir=base_dir, delete=False) as f:
                 json.dump(path, f)
             try:
-                return self.render(f.name, techniques, frames, exr, png)
+                return self.render(f.name, techniques, frames, exr, png, width=width, height=height,
+                                   progress=progress)
             finally:
                 os.unlink(f.name)
         encoded = to_path(path, "path")
@@ -495,13 +498,21 @@ class Context:
                     raise ArgumentError("techniques: unknown technique %r (expected one of %s)"
                                         % (t, ", ".join(sorted(names))))
                 bits |= names[t]
+        size = (None if width is None else to_int(width, "width", 1, 1 << 16),
+                None if height is None else to_int(height, "height", 1, 1 << 16))
+        _check_progress(progress)
         with self._running_job():
-            return self._render_file(encoded, bits, frames, exr, png)
+            return self._render_file(encoded, bits, frames, exr, png, size, progress)
 
-    def _render_file(self, encoded, bits, frames, exr, png):
+    def _render_file(self, encoded, bits, frames, exr, png, size, progress):
         state = self._state
+
         # close() from another thread cancels the frame (a frame has no partial result).
-        cancel_on_close = _lib.PROGRESS_CALLBACK(lambda _user, _fraction: 1 if state.closing else 0)
+        def on_progress(_user, fraction):
+            if progress is not None:
+                progress(fraction)
+            return 1 if state.closing else 0
+        cancel_on_close = _lib.PROGRESS_CALLBACK(on_progress)
         scene = c_void_p()
         self._check(lib.arcus_scene_load(self._handle, encoded, byref(scene)))
         scene_ref = _Handle(scene, lib.arcus_scene_release)
@@ -511,6 +522,12 @@ class Context:
             renderer_ref = _Handle(renderer, lib.arcus_renderer_release)
             if bits is not None:
                 self._check(lib.arcus_renderer_set_techniques(renderer, bits))
+            if size != (None, None):
+                camera = _lib.CameraStruct()
+                self._check(lib.arcus_renderer_get_camera(renderer, byref(camera)))
+                camera.width = size[0] or camera.width
+                camera.height = size[1] or camera.height
+                self._check(lib.arcus_renderer_set_camera(renderer, byref(camera)))
             job = None
             for _ in range(frames):
                 out = c_void_p()

@@ -396,13 +396,13 @@ def _check_sun(scene):
 
 
 def export(scene, path, *, table=None, width=None, height=None, sun_samples=None, march_steps=None, cache_dir=None,
-           client="serial", workers=None):
+           client="serial", workers=None, base_dir=None):
     """Writes a scene with its volume table for ``arcus_view`` (which has no Python to
     build tables): ``path`` (JSON: ``"arcus_rainbow_sky": 1``, the sky's members and the
     table's axes and extinction) and ``path + ".beta"`` (β as little-endian float64,
     wavelength × φ × θ).  ``width`` … ``march_steps`` override the scene's, as in
-    :func:`render`.  Returns the :class:`VolumeTable`."""
-    base_dir = _scene_dir(scene)
+    :func:`render` (``base_dir`` too).  Returns the :class:`VolumeTable`."""
+    base_dir = _scene_dir(scene) if base_dir is None else os.fspath(base_dir)
     scene = load_scene(scene)
     _check_sun(scene)
     if table is None:
@@ -424,15 +424,16 @@ def export(scene, path, *, table=None, width=None, height=None, sun_samples=None
 
 
 def render(scene, *, exr=None, png=None, table=None, width=None, height=None, sun_samples=None, march_steps=None,
-           cache_dir=None, client="serial", workers=None, progress=None, context=None):
+           cache_dir=None, client="serial", workers=None, progress=None, context=None, base_dir=None):
     """Renders a rainbow scene (dict or JSON path): a :class:`SkyImage`; writes ``exr``
     (R, G, B linear, X, Y, Z, theta) and ``png`` (sRGB) if given.  ``table`` reuses a
     :class:`VolumeTable`; ``width``, ``height``, ``sun_samples`` and ``march_steps``
     override the scene's.  Phase tables come from the sweep cache (``cache_dir``),
-    computed where missing, here (``client="serial"``) or on a Dask client/address."""
+    computed where missing, here (``client="serial"``) or on a Dask client/address.
+    ``base_dir``: where a dict's relative file names start (default: the current folder)."""
     from .rainbow import _context
 
-    base_dir = _scene_dir(scene)
+    base_dir = _scene_dir(scene) if base_dir is None else os.fspath(base_dir)
     scene = load_scene(scene)
     _check_sun(scene)
     sky_parameters(scene, np.array([550.0]), base_dir=base_dir)  # the scene's errors before any table is computed

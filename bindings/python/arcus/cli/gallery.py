@@ -1,0 +1,205 @@
+"""arcus gallery: every engine's showcase on one self-contained page, out/index.html.
+
+Each step is one run of the arcus command (or of an app it ships) at gallery settings
+— a preview that still shows the effect — two at a time, since the slowest part on a
+CPU is compiling each scene's kernels, which takes one core.  ``--full`` renders at the
+scenes' own settings and adds the full benchmarks (about an hour on two cores).
+"""
+
+import concurrent.futures
+import os
+import subprocess
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..progress import Progress
+from . import page, resources
+
+
+@dataclass
+class Step:
+    section: str
+    title: str
+    caption: str           # what it shows, and which thesis figure it reproduces
+    argv: list             # arguments of the arcus command, or [app.py, ...] of a shipped app
+    out: str               # the folder (under the gallery's) its pictures and tables go to
+    then: list = field(default_factory=list)  # a second command on the same folder
+    docs_image: str = ""   # the picture that stands for the engine in the README (--docs)
+    pictures: list = field(default_factory=list)  # what the page shows, if not every PNG of `out`
+    expected_seconds: float = 5.0  # with empty caches on two cores: the longest start first
+    seconds: float = 0.0
+    failed: str = ""
+
+
+# (scene, title, the thesis figure it reproduces); the caption is the scene's own
+# description, which says what it shows.
+RENDER_SCENES = [
+    ("inferior_mirage", "Inferior mirage", "Thesis Fig. 5.14(a)."),
+    ("novaya_zemlya", "Novaya Zemlya effect", "Thesis Fig. 5.14(b)."),
+    ("fata_morgana", "Fata Morgana", "Thesis Fig. 5.14(c)."),
+    ("cross_room", "Curved photon mapping", "Thesis Fig. 5.14(d)."),
+    ("sunset_spectral", "Spectral sunset", "Beyond the thesis' figures (§2.2)."),
+]
+WATERS = ["atlantic", "mediterranean", "baltic", "north_sea", "cdom_coastal"]
+SKIES = [
+    ("double_bow", "Primary and secondary bows"),
+    ("supernumerary", "Supernumerary bows"),
+    ("red_sun", "Red sunset bow"),
+    ("cloudbow", "Cloudbow"),
+    ("twinned", "Twinned bow"),
+    ("halo", "22° halo"),
+    ("sundogs", "Sundogs"),
+]
+
+BENCH_STEPS = [
+    ("curved", "Curved light: error against time",
+     "Thesis §5.4.1, Fig. 5.13: the integrators (Euler, RK2, RK4, Dormand–Prince 5(4)) in double and float, "
+     "error at the end of a ray against time, beside Boost.Odeint and a native RK4 (docs/benchmarks.md)."),
+    ("render", "Rendering: what each optimization costs and saves",
+     "Thesis §5.4.2.2, Table 5.2: smart step selection, symmetry, undersampling and the path cache on the "
+     "inferior mirage, time against the hit-point error from the exhaustive ground truth."),
+    ("ocean", "Underwater light: error against time",
+     "Thesis §5.3: photon counts, radiance estimates and estimators (per step, beam) against a converged "
+     "reference."),
+    ("rainbow", "Rainbows: cast grid against error and time",
+     "Thesis §4.4: the ray-cast phase function of a drop against Lorenz–Mie as the grid grows."),
+    ("sky", "Rainbow skies: settings against error and time",
+     "Thesis §5.5.2: wavelengths, drop-size bins, sun points and march steps against a fine reference."),
+]
+
+
+def description(scene):
+    """A bundled scene's own description: what it shows, and the thesis figure."""
+    from .._scene_file import read
+    return read(resources.scene(scene), ("render", "ocean", "rainbow", "curved"))[1].get("description", "")
+
+
+def steps(full):
+    size = [] if full else ["--width", "400", "--height", "200"]
+    s = []
+    for name, title, figure in RENDER_SCENES:
+        square = [] if full else ["--width", "200", "--height", "200"]
+        dims = square if name in ("novaya_zemlya", "cross_room") else size
+        s.append(Step("Curved light and rendering through it", title, figure + " " + description(name),
+                      ["render", name, "-o", "{out}/%s.png" % name, "--quiet"] + dims, "render",
+                      docs_image="render/inferior_mirage.png" if name == "inferior_mirage" else "",
+                      expected_seconds=35.0))
+    s.append(Step("Curved light and rendering through it", "Ray paths of a mirage",
+                  "Thesis §5.4.1: the rays of scenes/mirage.json, integrated with Dormand–Prince 5(4). "
+                  + description("mirage"),
+                  ["trace", "mirage", "--out", "{out}", "--quiet"], "mirage",
+                  then=["apps/plot_paths.py", "{out}"], docs_image="mirage/paths.png", pictures=["paths.png"]))
+    for w in WATERS:
+        s.append(Step("Underwater light", "%s water" % w.replace("_", " ").title(), description("ocean/" + w),
+                      ["render", "ocean/" + w, "-o", "{out}/%s.png" % w, "--quiet"]
+                      + ([] if full else ["--quick", "--width", "256", "--height", "192"]), "ocean",
+                      docs_image="ocean/mediterranean.png" if w == "mediterranean" else ""))
+    photons = [] if full else ["--photons", "100000"]
+    s.append(Step("Underwater light", "Where the energy goes (Fig. 5.9)",
+                  "The energy absorbed per interaction. " + description("ocean/fig5_9"),
+                  ["ocean", "trace", "ocean/fig5_9", "--out", "{out}", "--quiet"] + photons, "ocean/fig5_9",
+                  pictures=["fig5_9.png"]))
+    s.append(Step("Underwater light", "Inelastic scattering in Baltic water (Fig. 5.12)",
+                  "Thesis Fig. 5.12: the energy per event and constituent. "
+                  + description("ocean/fig5_11/baltic_inelastic"),
+                  ["ocean", "trace", "ocean/fig5_11/baltic_inelastic", "--out", "{out}", "--quiet"] + photons,
+                  "ocean/fig5_12", pictures=["fig5_12.png"]))
+    s.append(Step("Underwater light", "A sunlit profile against discrete ordinates",
+                  "Thesis §4.2: downwelling, upwelling and scalar irradiance from the photon tracer against an "
+                  "independent plane-parallel discrete-ordinates solution (tests/python/ocean_reference.py).",
+                  ["apps/ocean/plot_profile_check.py", "--out", "{out}"]
+                  + ([] if full else ["--photons", "50000", "--batches", "4"]), "ocean/profile"))
+    wl = ["--wavelengths", "380", "700", "33" if full else "9"]
+    s.append(Step("Rainbows", "A drop's phase function against Mie and Debye",
+                  "Thesis §4.4, Fig. 5.16–5.20: a 500 µm drop's phase function by ray casting with interference, "
+                  "against Lorenz–Mie (Fig. 5.20), and term by term against the Debye series (Fig. 5.16–5.19).",
+                  ["rainbow", "table", "--particle", "sphere:500um"] + wl
+                  + ["--theta", "120", "145", "0.01", "--plot", "{out}/sphere.png", "--per-bounce", "-o",
+                     "{out}/sphere", "--quiet"] + ([] if full else ["--grid", "500"]), "rainbow",
+                  docs_image="rainbow/sphere.png"))
+    for name, title in SKIES:
+        # Gallery tables: 17 wavelengths (9 for the costly crystals, whose colours are
+        # a red edge), and 1000 orientations, fewer of which leave rings of noise.
+        tables = ["--wavelengths", "9", "--orientations", "1000"] if name in ("halo", "sundogs") else \
+            ["--wavelengths", "17"]
+        s.append(Step("Rainbow skies and halos", title, description("rainbow/" + name),
+                      ["render", "rainbow/" + name, "-o", "{out}/%s.png" % name, "--quiet"]
+                      + ([] if full else ["--quick", "--width", "400", "--height", "300"] + tables), "sky",
+                      docs_image="sky/%s.png" % name if name in ("double_bow", "halo") else "",
+                      expected_seconds={"halo": 75.0, "sundogs": 65.0, "twinned": 26.0}.get(name, 3.0)))
+    for engine, title, caption in BENCH_STEPS:
+        s.append(Step("What accuracy costs in time", title, caption,
+                      ["bench", engine, "--out", "{out}"] + (["--full"] if full else []), "bench/" + engine,
+                      expected_seconds={"render": 65.0, "curved": 32.0}.get(engine, 15.0)))
+    return s
+
+
+def add(sub):
+    p = sub.add_parser("gallery", help="every engine's showcase on one page, out/index.html", description=__doc__)
+    p.add_argument("--out", default="out", help="output folder (default out)")
+    p.add_argument("--full", action="store_true", help="the scenes' own settings and the full benchmarks (slow)")
+    p.add_argument("--docs", action="store_true", help="also copy the README's pictures to docs/images/")
+    p.add_argument("--jobs", type=int, default=2, help="steps run at once (default 2)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(run=run)
+
+
+def _command(argv):
+    first = argv[0]
+    if first.endswith(".py"):
+        return [sys.executable, str(resources.script(os.path.normpath(first)))] + argv[1:]
+    return [sys.executable, "-m", "arcus.cli"] + argv
+
+
+def _env():
+    env = dict(os.environ)
+    # The package this command runs from, for the steps' own processes.
+    package_parent = str(resources.PACKAGE.parent)
+    env["PYTHONPATH"] = package_parent + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
+    env.setdefault("MPLBACKEND", "Agg")
+    return env
+
+
+def run_step(step, root, log):
+    out = root / step.out
+    out.mkdir(parents=True, exist_ok=True)
+    started = time.monotonic()
+    for argv in [step.argv] + ([step.then] if step.then else []):
+        cmd = _command([a.replace("{out}", str(out)) for a in argv])
+        with open(log, "a") as f:
+            f.write("$ %s\n" % " ".join(cmd))
+            f.flush()
+            rc = subprocess.call(cmd, stdout=f, stderr=subprocess.STDOUT, env=_env(), cwd=str(root))
+        if rc != 0:
+            step.failed = "exit status %d (see %s)" % (rc, log)
+            break
+    step.seconds = time.monotonic() - started
+    return step
+
+
+def run(args):
+    root = Path(args.out).resolve()
+    root.mkdir(parents=True, exist_ok=True)
+    log = root / "gallery.log"
+    log.write_text("")
+    todo = steps(args.full)
+    started = time.monotonic()
+    with Progress("gallery", total=len(todo), unit="steps", quiet=args.quiet) as bar, \
+            concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
+        # Longest first, so that no long step starts last (the page keeps its own order).
+        order = sorted(todo, key=lambda s: -s.expected_seconds)
+        for step in concurrent.futures.as_completed([pool.submit(run_step, s, root, log) for s in order]):
+            step = step.result()
+            bar.set_stage("gallery: %s (%.0f s)" % (step.title, step.seconds))
+            bar.advance()
+    seconds = time.monotonic() - started
+    index = page.write(root, todo, seconds, full=args.full)
+    if args.docs:
+        page.copy_docs_images(root, todo)
+    failed = [s for s in todo if s.failed]
+    for s in failed:
+        print("arcus gallery: %s failed: %s" % (s.title, s.failed), file=sys.stderr)
+    print("arcus gallery: %d of %d steps in %.0f s; open %s" % (len(todo) - len(failed), len(todo), seconds, index))
+    return 1 if failed else 0

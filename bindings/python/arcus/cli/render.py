@@ -1,0 +1,209 @@
+"""arcus render SCENE [-o OUT ...]: renders a scene of any engine — a render scene
+through curved light, an ocean scene, a rainbow sky — to the formats the output names
+ask for (.png, .jpg, .exr, .hdr)."""
+
+import shutil
+import tempfile
+import time
+from pathlib import Path
+
+from .. import _scene_file, image
+from .._errors import ArgumentError
+from ..progress import Progress
+from . import resources
+
+FORMATS = (".png", ".jpg", ".jpeg", ".exr", ".hdr")
+# --quick: a preview in seconds.  The image shrinks by this factor per side (never below
+# 64 pixels), rainbow tables use 9 wavelengths and coarser casts, ocean scenes trace a
+# tenth of their photons.
+QUICK_SCALE = 4
+
+
+def add(sub):
+    p = sub.add_parser("render", help="render a scene (curved-light render scene, ocean, rainbow sky)",
+                       description=__doc__, epilog="examples:\n  arcus render inferior_mirage -o mirage.png\n"
+                       "  arcus render rainbow/double_bow --quick -o bow.png -o bow.exr\n"
+                       "  arcus render my_scene.json --width 400 --height 300",
+                       formatter_class=_raw())
+    p.add_argument("scene", nargs="?", help="a scene file, or a bundled scene's name (see --list)")
+    p.add_argument("-o", "--output", action="append", metavar="OUT",
+                   help="an image to write; the extension picks the format (%s); may be given several times "
+                        "(default: SCENE.png here)" % ", ".join(FORMATS))
+    p.add_argument("--quick", action="store_true", help="a preview in seconds: smaller image, fewer photons, "
+                   "wavelengths and orientations")
+    p.add_argument("--width", type=int, help="image width in pixels (default: the scene's)")
+    p.add_argument("--height", type=int, help="image height in pixels (default: the scene's)")
+    p.add_argument("--samples", type=int, help="rainbow skies: points on the sun's disc; ocean scenes: photons per "
+                   "radiance estimate")
+    p.add_argument("--seed", type=int, help="ocean scenes: the photons' seed; rainbow skies: the ice crystals' "
+                   "orientations")
+    p.add_argument("--wavelengths", type=int, help="rainbow skies: wavelengths of the phase tables (default: the "
+                   "scene's; --quick: 9)")
+    p.add_argument("--orientations", type=int, help="rainbow skies: orientations averaged per ice crystal (default: "
+                   "the scene's; --quick: at most 100)")
+    p.add_argument("--workers", type=int, help="rainbow skies: compute missing phase tables on a local Dask "
+                   "cluster of N worker processes")
+    p.add_argument("--scheduler", help="rainbow skies: compute missing phase tables on this Dask scheduler "
+                   "(tcp://host:8786)")
+    p.add_argument("--export-view", metavar="PATH", help="rainbow skies: also write the sky with its table for "
+                   "the live preview (arcus view PATH)")
+    p.add_argument("--device", help="an OpenCL device: an index or part of its name (default: ARCUS_DEVICE, else "
+                   "a GPU, else the CPU)")
+    p.add_argument("--list", action="store_true", help="list the bundled scenes and exit")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(run=run)
+
+
+def _raw():
+    import argparse
+    return argparse.RawDescriptionHelpFormatter
+
+
+def outputs_of(args, name):
+    outputs = [Path(o) for o in (args.output or [name + ".png"])]
+    for o in outputs:
+        if o.suffix.lower() not in FORMATS:
+            raise ArgumentError("-o %s: unknown image format %r (expected %s)" % (o, o.suffix, ", ".join(FORMATS)))
+    for o in outputs:
+        o.parent.mkdir(parents=True, exist_ok=True)
+    return outputs
+
+
+def run(args):
+    if args.list:
+        for name, path in resources.bundled_scenes().items():
+            print(name)
+        return 0
+    if not args.scene:
+        raise ArgumentError("render: give a scene file or a bundled scene's name (arcus render --list)")
+    for flag in ("width", "height", "samples", "wavelengths", "orientations"):
+        value = getattr(args, flag)
+        if value is not None and not 1 <= value <= 65536:
+            raise ArgumentError("--%s: expected 1..65536, got %d" % (flag, value))
+    path = resources.scene(args.scene)
+    engine, doc = _scene_file.read(path, ("render", "ocean", "rainbow", "curved", "sweep"))
+    if engine in ("curved", "sweep"):
+        raise ArgumentError("%s is a %s scene, which has no image: use `arcus %s %s`"
+                            % (path, engine, "trace" if engine == "curved" else "sweep", args.scene))
+    name = doc.get("name") or path.stem
+    outputs = outputs_of(args, name)
+    from ..context import Context
+    started = time.monotonic()
+    with Context(_device(args.device)) as ctx, tempfile.TemporaryDirectory(prefix="arcus-render-") as tmp:
+        exr, png = Path(tmp) / "image.exr", Path(tmp) / "image.png"
+        with Progress("rendering " + name, quiet=args.quiet) as bar:
+            summary = RENDERERS[engine](ctx, path, doc, args, str(exr), str(png), bar if bar.shown else None)
+        for out in outputs:
+            write_output(out, exr, png)
+    print("%s (%s scene): %s in %.1f s; wrote %s" % (name, engine, summary, time.monotonic() - started,
+                                                     ", ".join(str(o.resolve()) for o in outputs)))
+    return 0
+
+
+def _device(device):
+    if device is None:
+        return None
+    return int(device) if device.isdigit() else device
+
+
+def write_output(out, exr, png):
+    """Copies the engine's own EXR (every channel) or PNG (its exposure and tone curve),
+    or converts them: JPEG from the PNG's colours, Radiance HDR from the EXR's RGB."""
+    suffix = out.suffix.lower()
+    if suffix == ".exr":
+        shutil.copyfile(exr, out)
+    elif suffix == ".png":
+        shutil.copyfile(png, out)
+    elif suffix in (".jpg", ".jpeg"):
+        image.write(out, image.read(png))
+    else:
+        image.write(out, image.read(exr))
+
+
+def _scaled(size, quick):
+    return max(64, size // QUICK_SCALE) if quick else size
+
+
+def _refuse(args, flag, engine, why):
+    if getattr(args, flag) is not None:
+        raise ArgumentError("--%s does not apply to %s scenes: %s" % (flag.replace("_", "-"), engine, why))
+
+
+RAINBOW_ONLY = ("wavelengths", "orientations", "workers", "scheduler", "export_view")
+
+
+def render_curved(ctx, path, doc, args, exr, png, bar):
+    for flag in RAINBOW_ONLY:
+        _refuse(args, flag, "render", "it applies to rainbow skies")
+    _refuse(args, "samples", "render", "they trace one ray per pixel")
+    _refuse(args, "seed", "render", "they have no random numbers but their photons' fixed sequence")
+    camera = doc["camera"]
+    width = args.width or _scaled(camera["width"], args.quick)
+    height = args.height or _scaled(camera["height"], args.quick)
+    result = ctx.render(path, exr=exr, png=png, width=width, height=height, progress=bar)
+    return "%d × %d, %d rays traced" % (width, height, result.stats.get("rays_traced", 0))
+
+
+def render_ocean(ctx, path, doc, args, exr, png, bar):
+    from .. import ocean
+    for flag in RAINBOW_ONLY:
+        _refuse(args, flag, "ocean", "it applies to rainbow skies")
+    camera = doc["view"]["camera"]
+    camera["width"] = args.width or _scaled(camera["width"], args.quick)
+    camera["height"] = args.height or _scaled(camera["height"], args.quick)
+    photons = doc.setdefault("photons", {})
+    if args.quick:
+        photons["count"] = max(10000, photons.get("count", 400000) // 10)
+    if args.seed is not None:
+        photons["seed"] = args.seed
+    if args.samples is not None:
+        doc["view"].setdefault("march", {})["k"] = args.samples
+    ocean.render(doc, exr=exr, png=png, progress=bar, context=ctx)
+    return "%d × %d, %d photons" % (camera["width"], camera["height"], photons.get("count", 400000))
+
+
+def quick_rainbow(doc):
+    """A rainbow scene's tables at preview settings: 9 wavelengths, casts of at most 300
+    rays a side, at most 100 crystal orientations."""
+    tables = doc.setdefault("tables", {})
+    tables["wavelengths"] = {"linspace": [380, 700, 9]}
+    tables["grid"] = min(tables.get("grid", 1000), 300)
+    for p in doc["rain"]["populations"]:
+        if "orientations" in p:
+            p["orientations"] = min(p["orientations"], 100)
+
+
+def render_rainbow(ctx, path, doc, args, exr, png, bar):
+    from .. import sky
+    img = doc.get("image", {})
+    width = args.width or _scaled(img.get("width", 800), args.quick)
+    height = args.height or _scaled(img.get("height", 600), args.quick)
+    if args.quick:
+        quick_rainbow(doc)
+    if args.wavelengths is not None:
+        doc.setdefault("tables", {})["wavelengths"] = {"linspace": [380, 700, args.wavelengths]}
+    if args.orientations is not None:
+        for p in doc["rain"]["populations"]:
+            if "orientations" in p:
+                p["orientations"] = args.orientations
+    if args.seed is not None:
+        for p in doc["rain"]["populations"]:
+            if p.get("shape") == "crystal":
+                p["seed"] = args.seed
+    samples = args.samples if args.samples is not None else (4 if args.quick else None)
+    march_steps = 16 if args.quick else None
+    base_dir = str(Path(path).resolve().parent)
+    client = args.scheduler if args.scheduler else (None if args.workers else "serial")
+    result = sky.render(doc, exr=exr, png=png, width=width, height=height, sun_samples=samples,
+                        march_steps=march_steps, base_dir=base_dir, client=client, workers=args.workers,
+                        progress=bar, context=ctx)
+    if args.export_view:
+        Path(args.export_view).parent.mkdir(parents=True, exist_ok=True)
+        sky.export(doc, args.export_view, table=result.table, width=width, height=height, sun_samples=samples,
+                   march_steps=march_steps, base_dir=base_dir)
+    t = result.table
+    return "%d × %d, %d wavelengths, %d phase tables (%d computed, %d cached)" % (
+        width, height, t.wavelengths.size, t.computed + t.cached, t.computed, t.cached)
+
+
+RENDERERS = {"render": render_curved, "ocean": render_ocean, "rainbow": render_rainbow}
