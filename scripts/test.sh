@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs every test: the ctest suites (C/C++), the
-# physics suite again in the one-ray-per-work-item layout GPUs get, the pytest suite,
-# then all of them again under AddressSanitizer + UndefinedBehaviorSanitizer, and the
-# fuzzers of the scene, image and mesh readers for a minute each.  Exits non-zero when
-# anything fails.  CI runs this.
+# physics suite again in the one-ray-per-work-item layout GPUs get, the pytest suite (with
+# the arcus command, the gallery in a headless browser and every example of the README
+# and docs), `pip install .` into a new virtual environment, then the suites again under
+# AddressSanitizer + UndefinedBehaviorSanitizer, and the fuzzers of the scene, image and
+# mesh readers for 20 s each.  Exits non-zero when anything fails.  CI runs this.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 start=$SECONDS
@@ -20,13 +21,17 @@ ctest_rc=$?
 scalar_rc=$?
 python3 -m pytest -q tests/python
 pytest_rc=$?
+# `pip install .` into a new virtual environment; `arcus` from a folder outside the tree.
+bash tests/install/pip_install_test.sh
+pip_rc=$?
 # The library, its tests and pytest against it, built with ASan + UBSan: any report fails.
 bash scripts/sanitize.sh
 sanitize_rc=$?
 # libFuzzer on the readers of untrusted files (scenes, images, meshes): the regression
-# inputs, then 60 s of fuzzing each.
-bash tests/fuzz/run_fuzz.sh 60
+# inputs, then 20 s of fuzzing each (longer runs: docs/testing.md).
+bash tests/fuzz/run_fuzz.sh 20
 fuzz_rc=$?
 echo "ctest exit $ctest_rc, ctest (one ray per work-item) exit $scalar_rc, pytest exit $pytest_rc," \
-     "sanitizers exit $sanitize_rc, fuzzer exit $fuzz_rc; $((SECONDS - start)) s in all"
-[ $ctest_rc -eq 0 ] && [ $scalar_rc -eq 0 ] && [ $pytest_rc -eq 0 ] && [ $sanitize_rc -eq 0 ] && [ $fuzz_rc -eq 0 ]
+     "pip install exit $pip_rc, sanitizers exit $sanitize_rc, fuzzer exit $fuzz_rc; $((SECONDS - start)) s in all"
+[ $ctest_rc -eq 0 ] && [ $scalar_rc -eq 0 ] && [ $pytest_rc -eq 0 ] && [ $pip_rc -eq 0 ] && [ $sanitize_rc -eq 0 ] &&
+  [ $fuzz_rc -eq 0 ]

@@ -16,6 +16,11 @@ sys.path.insert(0, str(BINDINGS))
 import arcus  # noqa: E402  (needs the sys.path entry above)
 
 
+def pytest_configure(config):
+    config.addinivalue_line("markers", "end_to_end: runs the arcus command or the documentation as a user does "
+                            "(subprocesses; the sanitizer run skips them, they test no library code of their own)")
+
+
 @pytest.fixture(scope="session")
 def ctx():
     """One context for the whole session, so each kernel variant is compiled once."""

@@ -15,6 +15,8 @@ from arcus import image
 
 from conftest import BINDINGS
 
+pytestmark = pytest.mark.end_to_end
+
 
 def arcus_command(*args, cwd):
     env = dict(os.environ, PYTHONPATH=str(BINDINGS))

@@ -25,7 +25,6 @@ class Step:
     caption: str           # what it shows, and which thesis figure it reproduces
     argv: list             # arguments of the arcus command, or [app.py, ...] of a shipped app
     out: str               # the folder (under the gallery's) its pictures and tables go to
-    then: list = field(default_factory=list)  # a second command on the same folder
     docs_image: str = ""   # the picture that stands for the engine in the README (--docs)
     pictures: list = field(default_factory=list)  # what the page shows, if not every PNG of `out`
     expected_seconds: float = 5.0  # with empty caches on two cores: the longest start first
@@ -90,11 +89,11 @@ def steps(full):
                   "Thesis §5.4.1: the rays of scenes/mirage.json, integrated with Dormand–Prince 5(4). "
                   + description("mirage"),
                   ["trace", "mirage", "--out", "{out}", "--quiet"], "mirage",
-                  then=["apps/plot_paths.py", "{out}"], docs_image="mirage/paths.png", pictures=["paths.png"]))
+                  docs_image="mirage/paths.png", pictures=["paths.png"]))
     for w in WATERS:
         s.append(Step("Underwater light", "%s water" % w.replace("_", " ").title(), description("ocean/" + w),
                       ["render", "ocean/" + w, "-o", "{out}/%s.png" % w, "--quiet"]
-                      + ([] if full else ["--quick", "--width", "256", "--height", "192"]), "ocean",
+                      + ([] if full else ["--width", "256", "--height", "192"]), "ocean",
                       docs_image="ocean/mediterranean.png" if w == "mediterranean" else ""))
     photons = [] if full else ["--photons", "100000"]
     s.append(Step("Underwater light", "Where the energy goes (Fig. 5.9)",
@@ -127,7 +126,7 @@ def steps(full):
         s.append(Step("Rainbow skies and halos", title, description("rainbow/" + name),
                       ["render", "rainbow/" + name, "-o", "{out}/%s.png" % name, "--quiet"]
                       + ([] if full else ["--quick", "--width", "400", "--height", "300"] + tables), "sky",
-                      docs_image="sky/%s.png" % name if name in ("double_bow", "halo") else "",
+                      docs_image="sky/%s.png" % name if name in ("double_bow", "supernumerary") else "",
                       expected_seconds={"halo": 75.0, "sundogs": 65.0, "twinned": 26.0}.get(name, 3.0)))
     for engine, title, caption in BENCH_STEPS:
         s.append(Step("What accuracy costs in time", title, caption,
@@ -166,15 +165,13 @@ def run_step(step, root, log):
     out = root / step.out
     out.mkdir(parents=True, exist_ok=True)
     started = time.monotonic()
-    for argv in [step.argv] + ([step.then] if step.then else []):
-        cmd = _command([a.replace("{out}", str(out)) for a in argv])
-        with open(log, "a") as f:
-            f.write("$ %s\n" % " ".join(cmd))
-            f.flush()
-            rc = subprocess.call(cmd, stdout=f, stderr=subprocess.STDOUT, env=_env(), cwd=str(root))
-        if rc != 0:
-            step.failed = "exit status %d (see %s)" % (rc, log)
-            break
+    cmd = _command([a.replace("{out}", str(out)) for a in step.argv])
+    with open(log, "a") as f:
+        f.write("$ %s\n" % " ".join(cmd))
+        f.flush()
+        rc = subprocess.call(cmd, stdout=f, stderr=subprocess.STDOUT, env=_env(), cwd=str(root))
+    if rc != 0:
+        step.failed = "exit status %d (see %s)" % (rc, log)
     step.seconds = time.monotonic() - started
     return step
 
