@@ -11,7 +11,7 @@ from . import resources
 
 # command: (how it runs, words before the scene argument, help)
 TOOLS = {
-    "trace": ("arcus_trace", 0, "trace a curved-light scene's rays: CSVs, a summary and a plot of the paths"),
+    "trace": ("arcus_trace", 0, "trace a curved-light scene's rays: CSVs, a summary and paths.png"),
     "view": ("arcus_view", 0, "the live, progressive preview of a render scene or a rainbow sky"),
     "ocean": ("apps/ocean/arcus_ocean.py", 1, "underwater light: ocean trace|profile|render SCENE"),
     "rainbow": ("apps/rainbow/arcus_rainbow.py", None, "phase functions: rainbow table|mie (drops, crystals)"),
@@ -58,7 +58,20 @@ def run_tool(args, extra):
     what, before, _ = TOOLS[args.tool]
     # The Python apps name themselves after this in their usage lines.
     env = dict(os.environ, ARCUS_PROG="arcus " + args.tool)
-    return subprocess.call(command(what) + _with_scene(extra, before), env=env)
+    extra = _with_scene(extra, before)
+    rc = subprocess.call(command(what) + extra, env=env)
+    if rc == 0 and args.tool == "trace" and "--help" not in extra and "-h" not in extra:
+        rc = subprocess.call(command("apps/plot_paths.py") + [_trace_folder(extra)], env=env)
+    return rc
+
+
+def _trace_folder(extra):
+    """Where arcus_trace wrote: --out DIR, else out/<the scene's name>."""
+    if "--out" in extra and extra.index("--out") + 1 < len(extra):
+        return extra[extra.index("--out") + 1]
+    from .._scene_file import read
+    scene = next(w for w in extra if not w.startswith("-"))
+    return os.path.join("out", read(scene, ("curved",))[1].get("name", "scene"))
 
 
 # engine: (quick command, full command); each takes --out.
