@@ -177,6 +177,26 @@ def test_cache_never_trusts_a_damaged_file(serial, tmp_path):
     assert (fourth.computed, fourth.cached) == (0, 6)
 
 
+def test_scenes_whose_angles_are_a_subset_share_one_table_exactly(tmp_path):
+    # The ray-cast tables live on the shared 0.01 degree grid: double_bow's angles (100-180
+    # every 0.05) and supernumerary's (120-180 every 0.02) are both slices of it, so the
+    # second scene computes nothing.  The slices are the point samples the cast gives at
+    # those angles asked directly (the phase function is read off the cast at any
+    # direction); np.arange's angles differ from the shared grid's by float rounding
+    # (~1e-11 degrees), which moves a sample by far less than 1e-9 of the peak.
+    drop, wl = [{"kind": "sphere", "radius": 5e-4}], [450.0, 650.0]
+    bow = sweep.phase_tables(drop, wl, np.arange(100, 180.001, 0.05), grid=120, cache_dir=tmp_path, client="serial")
+    assert (bow.computed, bow.cached) == (2, 0)
+    theta = np.arange(120, 180.001, 0.02)
+    fringes = sweep.phase_tables(drop, wl, theta, grid=120, cache_dir=tmp_path, client="serial")
+    assert (fringes.computed, fringes.cached) == (0, 2)
+    direct = arcus.rainbow.phase_function(arcus.rainbow.Sphere(5e-4), 650.0, theta, grid=120, max_bounces=3)
+    np.testing.assert_allclose(fringes.phase[0, 1], direct.unpolarized, rtol=1e-9, atol=1e-9 * direct.unpolarized.max())
+    # A grid off the shared one (0.015 degrees) is computed on its own angles.
+    odd = sweep.phase_tables(drop, wl, np.arange(130, 140, 0.015), grid=120, cache_dir=tmp_path, client="serial")
+    assert odd.computed == 2
+
+
 def test_default_cache_dir(monkeypatch, tmp_path):
     monkeypatch.setenv("ARCUS_CACHE_DIR", str(tmp_path / "a"))
     assert sweep.default_cache_dir() == os.path.join(str(tmp_path / "a"), "tables")  # beside the programs

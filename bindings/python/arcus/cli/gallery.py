@@ -93,7 +93,7 @@ def steps(full):
     for w in WATERS:
         s.append(Step("Underwater light", "%s water" % w.replace("_", " ").title(), description("ocean/" + w),
                       ["render", "ocean/" + w, "-o", "{out}/%s.png" % w, "--quiet"]
-                      + ([] if full else ["--width", "256", "--height", "192"]), "ocean",
+                      + ([] if full else ["--width", "256", "--height", "192", "--photons", "200000"]), "ocean",
                       docs_image="ocean/mediterranean.png" if w == "mediterranean" else ""))
     photons = [] if full else ["--photons", "100000"]
     s.append(Step("Underwater light", "Where the energy goes (Fig. 5.9)",
@@ -120,9 +120,10 @@ def steps(full):
                   docs_image="rainbow/sphere.png"))
     for name, title in SKIES:
         # Gallery tables: 17 wavelengths (9 for the costly crystals, whose colours are
-        # a red edge), and 1000 orientations, fewer of which leave rings of noise.
-        tables = ["--wavelengths", "9", "--orientations", "1000"] if name in ("halo", "sundogs") else \
-            ["--wavelengths", "17"]
+        # a red edge), and 1000 orientations for the halo (fewer leave rings of noise;
+        # the sundogs' plates, nearly aligned, need fewer).
+        tables = {"halo": ["--wavelengths", "9", "--orientations", "1000"],
+                  "sundogs": ["--wavelengths", "9", "--orientations", "600"]}.get(name, ["--wavelengths", "17"])
         s.append(Step("Rainbow skies and halos", title, description("rainbow/" + name),
                       ["render", "rainbow/" + name, "-o", "{out}/%s.png" % name, "--quiet"]
                       + ([] if full else ["--quick", "--width", "400", "--height", "300"] + tables), "sky",

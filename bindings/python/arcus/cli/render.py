@@ -35,6 +35,8 @@ def add(sub):
     p.add_argument("--height", type=int, help="image height in pixels (default: the scene's)")
     p.add_argument("--samples", type=int, help="rainbow skies: points on the sun's disc; ocean scenes: photons per "
                    "radiance estimate")
+    p.add_argument("--photons", type=int, help="ocean scenes: photons traced (default: the scene's; --quick: a "
+                   "tenth)")
     p.add_argument("--seed", type=int, help="ocean scenes: the photons' seed; rainbow skies: the ice crystals' "
                    "orientations")
     p.add_argument("--wavelengths", type=int, help="rainbow skies: wavelengths of the phase tables (default: the "
@@ -80,6 +82,8 @@ def run(args):
         value = getattr(args, flag)
         if value is not None and not 1 <= value <= 65536:
             raise ArgumentError("--%s: expected 1..65536, got %d" % (flag, value))
+    if args.photons is not None and not 1 <= args.photons <= 10 ** 9:
+        raise ArgumentError("--photons: expected 1..10^9, got %d" % args.photons)
     path = resources.scene(args.scene)
     engine, doc = _scene_file.read(path, ("render", "ocean", "rainbow", "curved", "sweep"))
     if engine in ("curved", "sweep"):
@@ -132,11 +136,13 @@ def _refuse(args, flag, engine, why):
 RAINBOW_ONLY = ("wavelengths", "orientations", "workers", "scheduler", "export_view")
 
 
+
 def render_curved(ctx, path, doc, args, exr, png, bar):
     for flag in RAINBOW_ONLY:
         _refuse(args, flag, "render", "it applies to rainbow skies")
     _refuse(args, "samples", "render", "they trace one ray per pixel")
     _refuse(args, "seed", "render", "they have no random numbers but their photons' fixed sequence")
+    _refuse(args, "photons", "render", "a render scene's photon map is set in its file (\"photons\")")
     camera = doc["camera"]
     width = args.width or _scaled(camera["width"], args.quick)
     height = args.height or _scaled(camera["height"], args.quick)
@@ -154,6 +160,8 @@ def render_ocean(ctx, path, doc, args, exr, png, bar):
     photons = doc.setdefault("photons", {})
     if args.quick:
         photons["count"] = max(10000, photons.get("count", 400000) // 10)
+    if args.photons is not None:
+        photons["count"] = args.photons
     if args.seed is not None:
         photons["seed"] = args.seed
     if args.samples is not None:
@@ -175,6 +183,7 @@ def quick_rainbow(doc):
 
 def render_rainbow(ctx, path, doc, args, exr, png, bar):
     from .. import sky
+    _refuse(args, "photons", "rainbow", "a sky is marched, not photon-mapped")
     img = doc.get("image", {})
     width = args.width or _scaled(img.get("width", 800), args.quick)
     height = args.height or _scaled(img.get("height", 600), args.quick)
