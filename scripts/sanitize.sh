@@ -12,8 +12,12 @@ mkdir -p "$logs"
 
 # ---- build.  Flags on the command line, so CMakeLists.txt and build/ stay untouched.
 san="-fsanitize=address,undefined -fno-omit-frame-pointer"
+# -O1, as AddressSanitizer's documentation advises, and -g1: line tables for the reports
+# without the full debug information, which halves the build (json_reader.cpp: 34 s at
+# -O2 -g, 14 s at -O1 -g1) that was half of CI's time.
 t0=$SECONDS
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
   -DARCUS_BUILD_TESTS=ON -DARCUS_BUILD_BENCH=OFF -DARCUS_BUILD_APPS=ON \
   "-DCMAKE_C_FLAGS=$san" "-DCMAKE_CXX_FLAGS=$san" \
   "-DCMAKE_EXE_LINKER_FLAGS=$san" "-DCMAKE_SHARED_LINKER_FLAGS=$san" \
