@@ -182,22 +182,22 @@ def run(args):
     root.mkdir(parents=True, exist_ok=True)
     log = root / "gallery.log"
     log.write_text("")
-    todo = steps(args.full)
+    planned = steps(args.full)
     started = time.monotonic()
-    with Progress("gallery", total=len(todo), unit="steps", quiet=args.quiet) as bar, \
+    with Progress("gallery", total=len(planned), unit="steps", quiet=args.quiet) as bar, \
             concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
         # Longest first, so that no long step starts last (the page keeps its own order).
-        order = sorted(todo, key=lambda s: -s.expected_seconds)
+        order = sorted(planned, key=lambda s: -s.expected_seconds)
         for step in concurrent.futures.as_completed([pool.submit(run_step, s, root, log) for s in order]):
             step = step.result()
             bar.set_stage("gallery: %s (%.0f s)" % (step.title, step.seconds))
             bar.advance()
     seconds = time.monotonic() - started
-    index = page.write(root, todo, seconds, full=args.full)
+    index = page.write(root, planned, seconds, full=args.full)
     if args.docs:
-        page.copy_docs_images(root, todo)
-    failed = [s for s in todo if s.failed]
+        page.copy_docs_images(root, planned)
+    failed = [s for s in planned if s.failed]
     for s in failed:
         print("arcus gallery: %s failed: %s" % (s.title, s.failed), file=sys.stderr)
-    print("arcus gallery: %d of %d steps in %.0f s; open %s" % (len(todo) - len(failed), len(todo), seconds, index))
+    print("arcus gallery: %d of %d steps in %.0f s; open %s" % (len(planned) - len(failed), len(planned), seconds, index))
     return 1 if failed else 0
