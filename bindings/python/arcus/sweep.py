@@ -236,10 +236,31 @@ def _phi(phi):
     return float(angles[0]) if np.ndim(phi) == 0 else angles
 
 
+def _theta_task(theta):
+    """The angles as a task holds them: a uniform grid as its first angle, step and count
+    (a task's key is JSON: thousands of angles, written out, cost more to key and check
+    than a cached table costs to read), when those give back exactly these angles; else
+    the list."""
+    if theta.size >= 2:
+        diff = float(theta[1] - theta[0])
+        for step in (float("%.12g" % diff), diff):  # the step a spec wrote (0.05), or the one apart
+            grid = dict(first_deg=float(theta[0]), step_deg=step, count=int(theta.size))
+            if np.array_equal(_theta_values(grid), theta):
+                return grid
+    return theta.tolist()
+
+
+def _theta_values(theta):
+    """The angles of a task's ``theta`` (see _theta_task)."""
+    if isinstance(theta, dict):
+        return theta["first_deg"] + theta["step_deg"] * np.arange(theta["count"])
+    return np.array(theta, dtype=np.float64)
+
+
 def _phase_task(task):
     """One particle at one wavelength (a task of :func:`phase_tables`)."""
     spec, wl, theta, grid, bounces = (task[k] for k in ("particle", "wavelength", "theta", "grid", "max_bounces"))
-    theta = np.array(theta, dtype=np.float64)
+    theta = _theta_values(theta)
     phi = np.array(task["phi"], dtype=np.float64) if isinstance(task["phi"], list) else task["phi"]
     kind = spec["kind"]
     if kind == "crystal":
@@ -276,15 +297,17 @@ _phase_task.what = "phase tables (one particle, one wavelength each)"  # names t
 # Scenes whose theta grids are subsets of it share their tables exactly: a slice of the
 # same point samples, never an interpolation (double_bow's 100-180 every 0.05 degrees
 # and supernumerary's 120-180 every 0.02 are).  Other grids, Lorenz-Mie (whose cost
-# grows with the angles) and crystals (binned glints) are computed on the grid asked.
+# grows with the angles), crystals (binned glints) and tables over azimuths too (18 001
+# angles times every azimuth made the twinned bow's raindrop tables 26 MB each and its
+# first render 181 s instead of 26) are computed on the grid asked.
 SHARED_THETA_STEP = 0.01
 SHARED_THETA = np.arange(18001) * SHARED_THETA_STEP
 
 
-def _shared_theta_index(spec, theta):
+def _shared_theta_index(spec, theta, phi):
     """Where ``theta`` sits in SHARED_THETA, if ``spec``'s table is computed there; else None."""
     if spec["kind"] == "crystal" or (spec["kind"] == "sphere" and spec["method"] == "mie") or \
-            (spec["kind"] == "mesh" and not spec["smooth"]):
+            (spec["kind"] == "mesh" and not spec["smooth"]) or isinstance(phi, np.ndarray):
         return None
     steps = theta / SHARED_THETA_STEP
     index = np.rint(steps)
@@ -321,8 +344,8 @@ def phase_tables(particles, wavelengths, theta, phi=None, *, grid=1000, max_boun
     common = dict(phi=phi.tolist() if isinstance(phi, np.ndarray) else phi, grid=grid, max_bounces=max_bounces)
     # A mesh's bytes key its tables too (the worker ignores them): an edited file is a new particle.
     files = [dict(file_sha256=_file_digest(s["path"])) if s["kind"] == "mesh" else {} for s in specs]
-    shared = [_shared_theta_index(s, theta) for s in specs]
-    tasks = [dict(common, particle=s, wavelength=float(w), theta=(theta if k is None else SHARED_THETA).tolist(), **f)
+    shared = [_shared_theta_index(s, theta, phi) for s in specs]
+    tasks = [dict(common, particle=s, wavelength=float(w), theta=_theta_task(theta if k is None else SHARED_THETA), **f)
              for s, f, k in zip(specs, files, shared) for w in wl]
     run = map_tasks(_phase_task, tasks, cache_dir=cache_dir, client=client, workers=workers, progress=progress,
                     connect_timeout=connect_timeout)
