@@ -57,14 +57,19 @@ def storm_sky(seed=7):
     return np.clip(sky / 1.2, 0, 1)
 
 
-def main():
+def write(out):
+    """Writes the panorama to ``out`` (PNG)."""
     import matplotlib.image
 
-    out = Path(__file__).with_name("storm_sky.png")
     linear = storm_sky()
     # PNG holds sRGB code values; readers (arcus_image_read) decode them back to linear.
     encoded = np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * linear ** (1 / 2.4) - 0.055)
     matplotlib.image.imsave(out, encoded)
+
+
+def main():
+    out = Path(__file__).with_name("storm_sky.png")
+    write(out)
     print("wrote", out)
 
 
