@@ -13,7 +13,6 @@
 #define ARCUS_OCEAN_H
 
 #include "arcus_core.h"
-#include "arcus_render.h" /* arcus_camera */
 #include "arcus_scene.h"
 
 #ifdef __cplusplus

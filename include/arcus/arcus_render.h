@@ -43,15 +43,6 @@ extern "C" {
 #define ARCUS_FEATURE_GEOMETRY (UINT64_C(1) << 24)     /* rays stop on the scene's primitives */
 #define ARCUS_FEATURE_RECORD_STATE (UINT64_C(1) << 25) /* paths keep the whole state (cache) */
 
-/* A pinhole camera: the image's rows run top to bottom, y up along `up`. */
-typedef struct arcus_camera {
-  double position[3];
-  double look_at[3];
-  double up[3];
-  double vfov_deg; /* vertical field of view, 0 < vfov < 180 */
-  uint32_t width, height;
-} arcus_camera;
-
 typedef struct arcus_renderer_s arcus_renderer_t;
 
 /* A renderer of `scene` (which it keeps a reference to), with the scene's camera,

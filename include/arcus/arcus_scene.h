@@ -20,6 +20,17 @@ extern "C" {
 
 typedef struct arcus_scene_s arcus_scene_t;
 
+/* A pinhole camera, shared by every engine that makes a view (arcus_render.h,
+ * arcus_ocean.h): the image's rows run top to bottom, y up along `up`; positions in
+ * the scene's units.  Scene files give it as "camera" with the same member names. */
+typedef struct arcus_camera {
+  double position[3];
+  double look_at[3];
+  double up[3];
+  double vfov_deg; /* vertical field of view, 0 < vfov < 180 */
+  uint32_t width, height; /* 1..16384 pixels a side */
+} arcus_camera;
+
 /* Reads and checks the scene file at `path` and creates what it describes on ctx
  * (its medium, ...).  Relative file names inside the scene are relative to the scene
  * file's directory.  Errors: ARCUS_ERROR_IO (the file cannot be read),

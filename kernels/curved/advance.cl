@@ -71,12 +71,6 @@ ARCUS_INLINE void record_point(__global REAL* path, int capacity, size_t stride,
 #endif
 #define RECORD(g, moved) RECORD_AT(g, y[g], s[g], moved)
 
-#ifdef ARCUS_USE_DISPERSION
-#define MED(g) (&med[g])
-#else
-#define MED(g) (&med[0])
-#endif
-
 /* Marks the active lanes in `m` FAILED for `why`. */
 #define FAIL(g, m, why)                                                 \
   do {                                                                  \
@@ -125,19 +119,8 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
 #define REAL_STATE(c) (state + (c) * stride)
 #define INT_STATE(c) (istate + (c) * stride)
 
-#ifdef ARCUS_USE_DISPERSION
-  medium med[ARCUS_GROUPS];
-  FOR_GROUPS(g) {
-    med[g].f = &field;
-    med[g].data = field_data;
-    /* Each ray's own refractivity; an invalid wavelength gives NaN, and the ray is flagged below. */
-    med[g].refractivity = ciddor_refractivity(VLOAD(first_vector + g, wavelengths));
-  }
-#else
-  medium med[1];
-  med[0].f = &field;
-  med[0].data = field_data;
-#endif
+  medium med[ARCUS_MEDIA];
+  media_init(med, &field, field_data, wavelengths, first_vector); /* a bad wavelength is flagged below */
 
   ray6 y[ARCUS_GROUPS], comp[ARCUS_GROUPS]; /* comp: see ray_advance */
   REALV s[ARCUS_GROUPS];
@@ -175,7 +158,7 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
       dy /= dmax;
       dz /= dmax;
       REALV n, gx, gy, gz;
-      field_eval(MED(g), x, yy, z, &n, &gx, &gy, &gz);
+      field_eval(GROUP_MEDIUM(med, g), x, yy, z, &n, &gx, &gy, &gz);
       REALV n_over_len = n * rsqrt(dx * dx + dy * dy + dz * dz);
       y[g].x = x;
       y[g].y = yy;
@@ -248,8 +231,8 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
    * same function of the same state, so slicing does not change the results). */
   FOR_GROUPS(g) {
     REALV n;
-    k1[g] = ray_derivative(MED(g), y[g], &n);
-    if (job.first_slice) h[g] = dp_initial_step(MED(g), &job, y[g], k1[g]);
+    k1[g] = ray_derivative(GROUP_MEDIUM(med, g), y[g], &n);
+    if (job.first_slice) h[g] = dp_initial_step(GROUP_MEDIUM(med, g), &job, y[g], k1[g]);
   }
   /* Adaptive: every lane takes its own steps; the loop runs while any lane of any group
    * is active (neighbouring rays take similar step counts, so idle lanes cost little). */
@@ -272,7 +255,9 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
     FOR_GROUPS(g) {
 #ifdef ARCUS_USE_BOX
       MASKV left = accepted[g] & (box_distance(&job, y[g]) > RC(0));
-      if (ANY(left)) cross_box(MED(g), &job, y_old[g], comp_old[g], s_old[g], h_taken[g], &y[g], &comp[g], &s[g], left);
+      if (ANY(left))
+        cross_box(GROUP_MEDIUM(med, g), &job, y_old[g], comp_old[g], s_old[g], h_taken[g], &y[g], &comp[g], &s[g],
+                  left);
       status[g] = SEL(status[g], (IDXV)ARCUS_STATUS_LEFT_BOX, left);
 #endif
       /* Recorded before the geometry hook moves a hit's end onto its surface: a stored
@@ -280,9 +265,9 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
       RECORD(g, accepted[g]);
 #ifdef ARCUS_USE_GEOMETRY
       if (ANY(accepted[g]))
-        geometry_step(MED(g), &job, &geo, nodes, tris, shapes, y_old[g], comp_old[g], s_old[g], &y[g], &comp[g], &s[g],
-                      steps[g], accepted[g], accepted[g] & (status[g] != (IDXV)ARCUS_STATUS_ACTIVE), 0, &hs[g],
-                      &chunk[g], &status[g]);
+        geometry_step(GROUP_MEDIUM(med, g), &job, &geo, nodes, tris, shapes, y_old[g], comp_old[g], s_old[g], &y[g],
+                      &comp[g], &s[g], steps[g], accepted[g], accepted[g] & (status[g] != (IDXV)ARCUS_STATUS_ACTIVE), 0,
+                      &hs[g], &chunk[g], &status[g]);
 #endif
     }
   }
@@ -318,15 +303,16 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
       REALV s_new = s[g] + hk;
       MASKV left = active & (box_distance(&job, y_new[g]) > RC(0));
       if (ANY(left))
-        cross_box(MED(g), &job, y[g], comp[g], s[g], (REALV)hk, &y_new[g], &comp_new[g], &s_new, left);
+        cross_box(GROUP_MEDIUM(med, g), &job, y[g], comp[g], s[g], (REALV)hk, &y_new[g], &comp_new[g], &s_new, left);
       status[g] = SEL(status[g], (IDXV)ARCUS_STATUS_LEFT_BOX, left);
       RECORD_AT(g, y_new[g], s_new, active); /* before the geometry hook: see above */
 #ifdef ARCUS_USE_GEOMETRY
       const MASKV last_step = (IDXV)(k + 1 >= job.fixed_steps ? -1 : 0); /* the host marks these rays DONE */
       if (ANY(active))
-        geometry_step(MED(g), &job, &geo, nodes, tris, shapes, y[g], comp[g], s[g], &y_new[g], &comp_new[g], &s_new,
-                      steps[g] + ONE_IF(active), active, active & ((status[g] != (IDXV)ARCUS_STATUS_ACTIVE) | last_step),
-                      0, &hs[g], &chunk[g], &status[g]);
+        geometry_step(GROUP_MEDIUM(med, g), &job, &geo, nodes, tris, shapes, y[g], comp[g], s[g], &y_new[g],
+                      &comp_new[g], &s_new, steps[g] + ONE_IF(active), active,
+                      active & ((status[g] != (IDXV)ARCUS_STATUS_ACTIVE) | last_step), 0, &hs[g], &chunk[g],
+                      &status[g]);
 #endif
       y[g] = ray_select(y[g], y_new[g], active);
       comp[g] = ray_select(comp[g], comp_new[g], active);
@@ -377,8 +363,8 @@ __kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* w
   FOR_GROUPS(g) {
     const MASKV open = status[g] == (IDXV)ARCUS_STATUS_ACTIVE;
     if (ANY(open))
-      geometry_step(MED(g), &job, &geo, nodes, tris, shapes, y[g], comp[g], s[g], &y[g], &comp[g], &s[g], steps[g], open,
-                    open, 1, &hs[g], &chunk[g], &status[g]);
+      geometry_step(GROUP_MEDIUM(med, g), &job, &geo, nodes, tris, shapes, y[g], comp[g], s[g], &y[g], &comp[g], &s[g],
+                    steps[g], open, open, 1, &hs[g], &chunk[g], &status[g]);
   }
 #endif
   /* The state goes back to the device buffer: the next slice resumes from it, and after

@@ -120,6 +120,29 @@ ARCUS_INLINE REALV ciddor_refractivity(REALV wavelength_nm) {
   return standard * RC(288.15 / 101325.0);
 }
 
+#ifdef __OPENCL_C_VERSION__
+#ifdef ARCUS_USE_DISPERSION
+#define ARCUS_MEDIA ARCUS_GROUPS
+#else
+#define ARCUS_MEDIA 1
+#endif
+/* Sets up the media of the work-item whose first lane vector is `first_vector`, as
+ * medium med[ARCUS_MEDIA] (read through GROUP_MEDIUM): the field and its data, and with
+ * per-ray wavelengths each lane's refractivity (an invalid wavelength gives NaN, which
+ * the caller flags).  Every kernel that integrates rays (curved/advance.cl,
+ * render/walk.cl) starts so. */
+ARCUS_INLINE void media_init(medium* med, const field_desc* field, ARCUS_GLOBAL const REAL* data,
+                             ARCUS_GLOBAL const REAL* wavelengths, size_t first_vector) {
+  FOR_N(g, ARCUS_MEDIA) {
+    med[g].f = field;
+    med[g].data = data;
+#ifdef ARCUS_USE_DISPERSION
+    med[g].refractivity = ciddor_refractivity(VLOAD(first_vector + g, wavelengths));
+#endif
+  }
+}
+#endif
+
 /* Atmosphere (thesis §3.1.1): temperature piecewise linear in geopotential height H
  * (US Standard Atmosphere 1976 plus inversion layers), pressure from the hydrostatic
  * equation in closed form per segment, n − 1 proportional to density p/T (Ciddor's

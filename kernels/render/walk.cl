@@ -141,18 +141,8 @@ __kernel void arcus_walk(__global const REAL* paths, const int slots, __global c
   const size_t first_vector = get_global_id(0) * ARCUS_GROUPS;
   const size_t stride = (size_t)job.stride;
   const REAL plane[4] = {plane4.x, plane4.y, plane4.z, plane4.w};
-#ifdef ARCUS_USE_DISPERSION
-  medium med[ARCUS_GROUPS];
-  FOR_GROUPS(g) {
-    med[g].f = &field;
-    med[g].data = field_data;
-    med[g].refractivity = ciddor_refractivity(VLOAD(first_vector + g, wavelengths));
-  }
-#else
-  medium med[1];
-  med[0].f = &field;
-  med[0].data = field_data;
-#endif
+  medium med[ARCUS_MEDIA];
+  media_init(med, &field, field_data, wavelengths, first_vector);
   walk_lane lanes[ARCUS_GROUPS][ARCUS_LANES];
   ray6 y[ARCUS_GROUPS];
   REALV s[ARCUS_GROUPS];
@@ -244,8 +234,8 @@ __kernel void arcus_walk(__global const REAL* paths, const int slots, __global c
       ray6 y1 = y[g], comp1 = zero;
       REALV s1 = s[g];
       walk_load(paths, slots, counts, lanes[g], next, moved, plane, &y1, &s1);
-      geometry_step(MED(g), &job, &geo, nodes, tris, shapes, y[g], zero, s[g], &y1, &comp1, &s1, next, moved,
-                    moved & (next + (IDXV)1 >= count[g]), 0, &hs[g], &chunk[g], &status[g]);
+      geometry_step(GROUP_MEDIUM(med, g), &job, &geo, nodes, tris, shapes, y[g], zero, s[g], &y1, &comp1, &s1, next,
+                    moved, moved & (next + (IDXV)1 >= count[g]), 0, &hs[g], &chunk[g], &status[g]);
       /* Lanes that moved stand at the chord's end now, or on the surface they hit. */
       y[g] = ray_select(y[g], y1, moved);
       s[g] = SEL(s[g], s1, moved);

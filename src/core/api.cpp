@@ -12,7 +12,6 @@
 
 using arcus::Handle;
 using arcus::HandleRef;
-using arcus::HandleType;
 using arcus::require;
 using arcus::require_pointer;
 using namespace arcus::api;
@@ -36,13 +35,13 @@ arcus_status bad_handle(const void* handle, arcus_status status, const std::stri
   return status;
 }
 
-HandleRef hold(const void* handle, HandleType type, const char* name, arcus_status* status) {
+HandleRef hold(const void* handle, const HandleKind& kind, const char* name, arcus_status* status) {
   std::string message;
   HandleRef ref;
   arcus_context_t* reentered = nullptr;
   *status = run_catching(
       [&](std::string*) {
-        ref = HandleRef(arcus::retain_handle(handle, type, name, arcus::refuse_reentry, &reentered));
+        ref = HandleRef(arcus::retain_handle(handle, kind, name, arcus::refuse_reentry, &reentered));
         return ARCUS_SUCCESS;
       },
       &message);
@@ -119,12 +118,12 @@ arcus_status arcus_context_create(int32_t device, arcus_context_t** out) {
   });
 }
 
-arcus_status arcus_context_retain(arcus_context_t* ctx) { return retain(ctx, HandleType::Context, "ctx"); }
+arcus_status arcus_context_retain(arcus_context_t* ctx) { return retain(ctx, arcus::kContextHandle, "ctx"); }
 
-arcus_status arcus_context_release(arcus_context_t* ctx) { return release(ctx, HandleType::Context, "ctx"); }
+arcus_status arcus_context_release(arcus_context_t* ctx) { return release(ctx, arcus::kContextHandle, "ctx"); }
 
 arcus_status arcus_context_get_device(arcus_context_t* ctx, arcus_device_info* info) {
-  return simple<arcus_context_s>(ctx, HandleType::Context, "ctx", [&](arcus_context_s* c) {
+  return simple<arcus_context_s>(ctx, arcus::kContextHandle, "ctx", [&](arcus_context_s* c) {
     require_pointer(info, "info");
     *info = c->runtime->entry().info;
   });
@@ -133,13 +132,13 @@ arcus_status arcus_context_get_device(arcus_context_t* ctx, arcus_device_info* i
 const char* arcus_context_last_error(arcus_context_t* ctx) {
   if (!ctx) return "ctx is NULL";
   const HandleRef h(arcus::retain_any_handle(ctx));
-  if (!h || h.get()->type() != HandleType::Context) return "ctx is not a live arcus context";
+  if (!h || &h.get()->kind() != &arcus::kContextHandle) return "ctx is not a live arcus context";
   // The caller holds a reference (this one is not the last), so the string outlives it.
   return ctx->last_error.c_str();
 }
 
 arcus_status arcus_context_set_error_callback(arcus_context_t* ctx, arcus_error_callback callback, void* user) {
-  return simple<arcus_context_s>(ctx, HandleType::Context, "ctx", [&](arcus_context_s* c) {
+  return simple<arcus_context_s>(ctx, arcus::kContextHandle, "ctx", [&](arcus_context_s* c) {
     c->callback = callback;
     c->callback_user = user;
   });
@@ -154,26 +153,26 @@ arcus_status arcus_features_to_string(arcus_features features, char* buffer, siz
   });
 }
 
-arcus_status arcus_job_retain(arcus_job_t* job) { return retain(job, HandleType::Job, "job"); }
+arcus_status arcus_job_retain(arcus_job_t* job) { return retain(job, arcus::kJobHandle, "job"); }
 
-arcus_status arcus_job_release(arcus_job_t* job) { return release(job, HandleType::Job, "job"); }
+arcus_status arcus_job_release(arcus_job_t* job) { return release(job, arcus::kJobHandle, "job"); }
 
 arcus_status arcus_job_get_count(arcus_job_t* job, size_t* count) {
-  return simple<arcus_job_s>(job, HandleType::Job, "job", [&](arcus_job_s* j) {
+  return simple<arcus_job_s>(job, arcus::kJobHandle, "job", [&](arcus_job_s* j) {
     require_pointer(count, "count");
     *count = j->count;
   });
 }
 
 arcus_status arcus_job_get_features(arcus_job_t* job, arcus_features* features) {
-  return simple<arcus_job_s>(job, HandleType::Job, "job", [&](arcus_job_s* j) {
+  return simple<arcus_job_s>(job, arcus::kJobHandle, "job", [&](arcus_job_s* j) {
     require_pointer(features, "features");
     *features = j->features;
   });
 }
 
 arcus_status arcus_job_get_stats(arcus_job_t* job, arcus_job_stats* stats) {
-  return simple<arcus_job_s>(job, HandleType::Job, "job", [&](arcus_job_s* j) {
+  return simple<arcus_job_s>(job, arcus::kJobHandle, "job", [&](arcus_job_s* j) {
     require_pointer(stats, "stats");
     *stats = j->stats;
   });

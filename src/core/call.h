@@ -74,22 +74,22 @@ arcus_status locked(arcus_context_t* ctx, Body&& body) {
 }
 
 // A handle that could not be used: the message goes to the thread, and to the context
-// of the object it points at when that is a live object (of another type, or one whose
+// of the object it points at when that is a live object (of another kind, or one whose
 // context this thread is inside of: a re-entry).  Returns `status`.
 arcus_status bad_handle(const void* handle, arcus_status status, const std::string& message);
 
-// A reference to `handle`, checked (live, of the right type, not a re-entry), for a
+// A reference to `handle`, checked (live, of the right kind, not a re-entry), for a
 // call; on failure the status (with the message reported as bad_handle does) and an
 // empty reference.
-HandleRef hold(const void* handle, HandleType type, const char* name, arcus_status* status);
+HandleRef hold(const void* handle, const HandleKind& kind, const char* name, arcus_status* status);
 
-// A call on the object `handle` of type T (checked: live, of the right type), under
+// A call on the object `handle` of type T (checked: live, of the right kind), under
 // its context's lock, holding a reference to it until the call returns.
 // body(T*, std::string* message) returns the status.
 template <class T, class Body>
-arcus_status on(const void* handle, HandleType type, const char* name, Body&& body) {
+arcus_status on(const void* handle, const HandleKind& kind, const char* name, Body&& body) {
   arcus_status status;
-  const HandleRef ref = hold(handle, type, name, &status);
+  const HandleRef ref = hold(handle, kind, name, &status);
   if (!ref) return status;
   T* object = static_cast<T*>(ref.get());
   return locked(context_of(object), [&](std::string* msg) { return body(object, msg); });
@@ -97,8 +97,8 @@ arcus_status on(const void* handle, HandleType type, const char* name, Body&& bo
 
 // As `on`, for a body(T*) that returns nothing.
 template <class T, class Body>
-arcus_status simple(const void* handle, HandleType type, const char* name, Body&& body) {
-  return on<T>(handle, type, name, [&](T* object, std::string*) {
+arcus_status simple(const void* handle, const HandleKind& kind, const char* name, Body&& body) {
+  return on<T>(handle, kind, name, [&](T* object, std::string*) {
     body(object);
     return ARCUS_SUCCESS;
   });
@@ -107,18 +107,18 @@ arcus_status simple(const void* handle, HandleType type, const char* name, Body&
 // Retain and release of any handle of type T (a context's own release frees it when
 // its last object is gone).
 template <class T>
-arcus_status retain(T* handle, HandleType type, const char* name) {
+arcus_status retain(T* handle, const HandleKind& kind, const char* name) {
   arcus_status status;
-  HandleRef ref = hold(handle, type, name, &status);
+  HandleRef ref = hold(handle, kind, name, &status);
   if (!ref) return status;
   (void)ref.release_to_caller();  // the reference taken is the caller's new one
   return ARCUS_SUCCESS;
 }
 
 template <class T>
-arcus_status release(T* handle, HandleType type, const char* name) {
+arcus_status release(T* handle, const HandleKind& kind, const char* name) {
   arcus_status status;
-  const HandleRef ref = hold(handle, type, name, &status);
+  const HandleRef ref = hold(handle, kind, name, &status);
   if (!ref) return status;
   // The caller's reference goes now; the object is freed (if that was the last) when
   // `ref`, this call's own, goes too.
@@ -126,11 +126,11 @@ arcus_status release(T* handle, HandleType type, const char* name) {
   return ARCUS_SUCCESS;
 }
 
-// `p` as an object of type T of `ctx`: checked live, of the type, and of that context.
+// `p` as an object of type T of `ctx`: checked live, of the kind, and of that context.
 // For a call holding ctx's lock, which keeps the object from being freed meanwhile.
 template <class T>
-T* object_of(arcus_context_t* ctx, const void* p, HandleType type, const char* name) {
-  Handle* h = find_handle(p, type, name);
+T* object_of(arcus_context_t* ctx, const void* p, const HandleKind& kind, const char* name) {
+  Handle* h = find_handle(p, kind, name);
   if (h->owner() != ctx)
     fail(ARCUS_ERROR_INVALID_ARGUMENT, std::string(name) + " belongs to another context");
   return static_cast<T*>(h);
@@ -149,7 +149,7 @@ T* job_as(arcus_job_s* job, const char* what) {
 // A getter on a job of type T: body(T*) under its context's lock.
 template <class T, class Body>
 arcus_status on_job(arcus_job_t* job, const char* what, Body&& body) {
-  return simple<arcus_job_s>(job, HandleType::Job, "job", [&](arcus_job_s* j) { body(job_as<T>(j, what)); });
+  return simple<arcus_job_s>(job, arcus::kJobHandle, "job", [&](arcus_job_s* j) { body(job_as<T>(j, what)); });
 }
 
 // Copies a result out to a caller's array, which may be NULL (not wanted).

@@ -36,7 +36,7 @@ void release_object(Handle* object) {
 }
 
 void release_handle(Handle* h) {
-  if (h->type() == HandleType::Context)
+  if (&h->kind() == &kContextHandle)
     release_context(static_cast<arcus_context_t*>(h));
   else
     release_object(h);
@@ -61,7 +61,7 @@ void refuse_reentry(Handle* h, void* reentered) {
   arcus_context_t* ctx = context_of(h);
   if (!holds_lock(ctx)) return;
   if (reentered) *static_cast<arcus_context_t**>(reentered) = ctx;
-  fail(ARCUS_ERROR_REENTRANT, std::string("a call on this ") + handle_type_name(h->type()) +
+  fail(ARCUS_ERROR_REENTRANT, std::string("a call on this ") + h->kind().name() +
                                     " from a progress callback of a job on its context: the context is busy with "
                                     "that job; make the call after the job returns");
 }
@@ -81,7 +81,7 @@ void HandleRef::reset() {
 }
 
 arcus_context_t* context_of(Handle* h) {
-  return h->type() == HandleType::Context ? static_cast<arcus_context_t*>(h) : h->owner();
+  return &h->kind() == &kContextHandle ? static_cast<arcus_context_t*>(h) : h->owner();
 }
 
 size_t local_work_size(const arcus_context_t* ctx) { return ctx->info.is_gpu ? 0 : 1; }
@@ -96,7 +96,7 @@ void set_fp64(arcus_context_t* ctx, bool fp64) {
 }  // namespace arcus
 
 arcus_context_s::arcus_context_s(std::shared_ptr<arcus::DeviceRuntime> rt)
-    : Handle(arcus::HandleType::Context, nullptr), runtime(std::move(rt)), info(runtime->entry().info) {
+    : Handle(arcus::kContextHandle, nullptr), runtime(std::move(rt)), info(runtime->entry().info) {
   cl_int err = CL_SUCCESS;
   queue = arcus::ClQueue(
       clCreateCommandQueue(runtime->context(), runtime->entry().device, CL_QUEUE_PROFILING_ENABLE, &err));

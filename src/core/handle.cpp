@@ -3,6 +3,7 @@
 #include <mutex>
 #include <string>
 #include <unordered_set>
+#include <vector>
 
 #include "core/error.h"
 
@@ -20,40 +21,41 @@ Registry& registry() {
   return *r;
 }
 
-// The object at `p` checked to be live and of `type`; the registry's lock is held by the
+// Function-local so that kinds defined in any translation unit register safely at
+// static initialisation, in whatever order; never destroyed, as the registry.
+std::vector<const HandleKind*>& kind_list() {
+  static auto* kinds = new std::vector<const HandleKind*>;
+  return *kinds;
+}
+
+// The object at `p` checked to be live and of `kind`; the registry's lock is held by the
 // caller, so the object cannot finish its destruction meanwhile (~Handle needs the lock).
-// `before_type` (may be null) sees a live object before its type is checked.
-Handle* checked(const Registry& r, const void* p, HandleType type, const char* name,
-                void (*before_type)(Handle*, void*) = nullptr, void* user = nullptr) {
+// `before_kind` (may be null) sees a live object before its kind is checked.
+Handle* checked(const Registry& r, const void* p, const HandleKind& kind, const char* name,
+                void (*before_kind)(Handle*, void*) = nullptr, void* user = nullptr) {
   if (!p) fail(ARCUS_ERROR_INVALID_ARGUMENT, std::string(name) + " is NULL");
   // Only a registered address is dereferenced, and it is a Handle by construction.
   Handle* h = r.live.count(p) ? static_cast<Handle*>(const_cast<void*>(p)) : nullptr;
   if (!h || !h->alive())
     fail(ARCUS_ERROR_INVALID_ARGUMENT,
          std::string(name) + " is not a live arcus handle (released already, or not an arcus object)");
-  if (before_type) before_type(h, user);
-  if (h->type() != type)
-    fail(ARCUS_ERROR_INVALID_ARGUMENT, std::string(name) + " is a " + handle_type_name(h->type()) + ", not a " +
-                                           handle_type_name(type));
+  if (before_kind) before_kind(h, user);
+  if (&h->kind() != &kind)
+    fail(ARCUS_ERROR_INVALID_ARGUMENT,
+         std::string(name) + " is a " + h->kind().name() + ", not a " + kind.name());
   return h;
 }
 
 }  // namespace
 
-const char* handle_type_name(HandleType type) {
-  switch (type) {
-    case HandleType::Context: return "context";
-    case HandleType::Field: return "field";
-    case HandleType::Job: return "job";
-    case HandleType::Scene: return "scene";
-    case HandleType::Renderer: return "renderer";
-    case HandleType::Water: return "water";
-    case HandleType::Particle: return "particle";
-  }
-  return "object";
-}
+HandleKind::HandleKind(const char* name) : name_(name) { kind_list().push_back(this); }
 
-Handle::Handle(HandleType type, arcus_context_t* owner) : type_(type), owner_(owner) {
+const HandleKind kContextHandle("context");
+const HandleKind kJobHandle("job");
+
+std::vector<const HandleKind*> handle_kinds() { return kind_list(); }
+
+Handle::Handle(const HandleKind& kind, arcus_context_t* owner) : kind_(kind), owner_(owner) {
   Registry& r = registry();
   std::lock_guard<std::mutex> lock(r.mutex);
   r.live.insert(this);
@@ -75,14 +77,14 @@ bool Handle::try_retain() {
 void Handle::retain() {
   if (!try_retain())
     fail(ARCUS_ERROR_INVALID_ARGUMENT,
-         std::string("the ") + handle_type_name(type_) + " was released by another thread while in use");
+         std::string("the ") + kind_.name() + " was released by another thread while in use");
 }
 
-Handle* retain_handle(const void* p, HandleType type, const char* name, void (*before_retain)(Handle*, void*),
-                      void* user) {
+Handle* retain_handle(const void* p, const HandleKind& kind, const char* name,
+                      void (*before_retain)(Handle*, void*), void* user) {
   Registry& r = registry();
   std::lock_guard<std::mutex> lock(r.mutex);
-  Handle* h = checked(r, p, type, name, before_retain, user);
+  Handle* h = checked(r, p, kind, name, before_retain, user);
   if (!h->try_retain())
     fail(ARCUS_ERROR_INVALID_ARGUMENT, std::string(name) + " is not a live arcus handle (released already)");
   return h;
@@ -97,10 +99,10 @@ Handle* retain_any_handle(const void* p) {
   return h->try_retain() ? h : nullptr;
 }
 
-Handle* find_handle(const void* p, HandleType type, const char* name) {
+Handle* find_handle(const void* p, const HandleKind& kind, const char* name) {
   Registry& r = registry();
   std::lock_guard<std::mutex> lock(r.mutex);
-  return checked(r, p, type, name);
+  return checked(r, p, kind, name);
 }
 
 }  // namespace arcus

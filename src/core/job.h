@@ -9,7 +9,7 @@
 #include "core/runtime.h"
 
 struct arcus_job_s : arcus::Handle {
-  arcus_job_s(arcus_context_t* ctx, const char* kind) : Handle(arcus::HandleType::Job, ctx), kind(kind) {}
+  arcus_job_s(arcus_context_t* ctx, const char* kind) : Handle(arcus::kJobHandle, ctx), kind(kind) {}
   const char* kind;  // "advance", ...: which engine's getters apply
   size_t count = 0;
   arcus_features features = 0;

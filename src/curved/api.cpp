@@ -8,7 +8,6 @@
 #include "curved/advance.h"
 #include "curved/fields.h"
 
-using arcus::HandleType;
 using arcus::require;
 using arcus::require_pointer;
 using arcus::curved::AdvanceJob;
@@ -20,7 +19,7 @@ namespace {
 // Creates a field of ctx from what build() returns (it throws on bad parameters).
 template <class Build>
 arcus_status make_field(arcus_context_t* ctx, arcus_field_t** out, Build&& build) {
-  return simple<arcus_context_s>(ctx, HandleType::Context, "ctx", [&](arcus_context_s* c) {
+  return simple<arcus_context_s>(ctx, arcus::kContextHandle, "ctx", [&](arcus_context_s* c) {
     require_pointer(out, "out");
     *out = nullptr;
     FieldBuild b = build();
@@ -98,7 +97,7 @@ arcus_status arcus_field_create_grid_from_file(arcus_context_t* ctx, const char*
   // The file is read before the context's lock is taken: a slow or blocking file must
   // not hold up every other call on the context.  Its errors are reported under the lock.
   arcus_status status;
-  const arcus::HandleRef held = hold(ctx, arcus::HandleType::Context, "ctx", &status);  // alive while unlocked
+  const arcus::HandleRef held = hold(ctx, arcus::kContextHandle, "ctx", &status);  // alive while unlocked
   if (!held) return status;
   std::vector<double> values;
   std::exception_ptr failed;
@@ -115,12 +114,12 @@ arcus_status arcus_field_create_grid_from_file(arcus_context_t* ctx, const char*
   });
 }
 
-arcus_status arcus_field_retain(arcus_field_t* field) { return retain(field, HandleType::Field, "field"); }
+arcus_status arcus_field_retain(arcus_field_t* field) { return retain(field, arcus::curved::kFieldHandle, "field"); }
 
-arcus_status arcus_field_release(arcus_field_t* field) { return release(field, HandleType::Field, "field"); }
+arcus_status arcus_field_release(arcus_field_t* field) { return release(field, arcus::curved::kFieldHandle, "field"); }
 
 arcus_status arcus_field_get_kind(arcus_field_t* field, arcus_field_kind* kind) {
-  return simple<arcus_field_s>(field, HandleType::Field, "field", [&](arcus_field_s* f) {
+  return simple<arcus_field_s>(field, arcus::curved::kFieldHandle, "field", [&](arcus_field_s* f) {
     require_pointer(kind, "kind");
     *kind = static_cast<arcus_field_kind>(f->desc.kind);
   });
@@ -128,7 +127,7 @@ arcus_status arcus_field_get_kind(arcus_field_t* field, arcus_field_kind* kind) 
 
 arcus_status arcus_field_evaluate(arcus_field_t* field, size_t count, const double* positions, double* n,
                                   double* gradient) {
-  return simple<arcus_field_s>(field, HandleType::Field, "field", [&](arcus_field_s* f) {
+  return simple<arcus_field_s>(field, arcus::curved::kFieldHandle, "field", [&](arcus_field_s* f) {
     require(count == 0 || positions, "positions is NULL");
     require(count == 0 || n, "n is NULL");
     const medium m{&f->desc, f->data.data()};
@@ -151,10 +150,10 @@ arcus_status arcus_advance_params_init(arcus_advance_params* params) {
 arcus_status arcus_advance(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params* params,
                            size_t count, const double* origins, const double* directions, const double* wavelengths,
                            arcus_job_t** job) {
-  return on<arcus_context_s>(ctx, HandleType::Context, "ctx", [&](arcus_context_s* c, std::string* message) {
+  return on<arcus_context_s>(ctx, arcus::kContextHandle, "ctx", [&](arcus_context_s* c, std::string* message) {
     require_pointer(job, "job");
     *job = nullptr;
-    auto* f = object_of<arcus_field_s>(c, field, HandleType::Field, "field");
+    auto* f = object_of<arcus_field_s>(c, field, arcus::curved::kFieldHandle, "field");
     require_pointer(params, "params");
     return arcus::curved::advance(c, f, *params, count, origins, directions, wavelengths, job, message);
   });

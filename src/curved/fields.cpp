@@ -11,6 +11,9 @@
 #include "core/limits.h"
 
 namespace arcus::curved {
+
+const HandleKind kFieldHandle("field");
+
 namespace {
 
 // US Standard Atmosphere 1976 (NOAA-S/T 76-1562), table 4: base geopotential heights
@@ -305,10 +308,10 @@ bool dispersive(const arcus_field_desc_d& desc) { return desc.kind == ARCUS_KIND
 FieldBuild build_field(const MediumDesc& m) {
   switch (m.kind) {
     case ARCUS_FIELD_CONSTANT: return constant(m.n);
-    case ARCUS_FIELD_LINEAR: return linear(m.n0, m.gradient.data());
-    case ARCUS_FIELD_LINEAR_N2: return linear_n2(m.a, m.k.data());
-    case ARCUS_FIELD_LUNEBURG: return luneburg(m.center.data(), m.radius);
-    case ARCUS_FIELD_FISHEYE: return fisheye(m.center.data(), m.radius, m.n0);
+    case ARCUS_FIELD_LINEAR: return linear(m.n0, m.gradient.array().data());
+    case ARCUS_FIELD_LINEAR_N2: return linear_n2(m.a, m.k.array().data());
+    case ARCUS_FIELD_LUNEBURG: return luneburg(m.center.array().data(), m.radius);
+    case ARCUS_FIELD_FISHEYE: return fisheye(m.center.array().data(), m.radius, m.n0);
     case ARCUS_FIELD_ATMOSPHERE: {
       arcus_atmosphere_desc a;
       a.spherical = m.atmosphere.spherical ? 1 : 0;
@@ -321,8 +324,8 @@ FieldBuild build_field(const MediumDesc& m) {
     }
     case ARCUS_FIELD_GRID: {
       const GridDesc& g = m.grid;
-      const size_t count = grid_value_count(g.dims.data(), g.origin.data(), g.spacing.data());
-      return grid(read_grid_file(g.file.c_str(), g.dtype, count), g.dims.data(), g.origin.data(), g.spacing.data());
+      const size_t count = grid_value_count(g.dims.data(), g.origin.array().data(), g.spacing.array().data());
+      return grid(read_grid_file(g.file.c_str(), g.dtype, count), g.dims.data(), g.origin.array().data(), g.spacing.array().data());
     }
   }
   fail(ARCUS_ERROR_INVALID_ARGUMENT, "medium: unknown kind");

@@ -11,8 +11,12 @@
 #include "core/handle.h"
 #include "curved/field.h"  // kernels/curved/field.h: the description shared with the kernels
 
+namespace arcus::curved {
+extern const HandleKind kFieldHandle;  // "field"
+}  // namespace arcus::curved
+
 struct arcus_field_s : arcus::Handle {
-  explicit arcus_field_s(arcus_context_t* ctx) : Handle(arcus::HandleType::Field, ctx) {}
+  explicit arcus_field_s(arcus_context_t* ctx) : Handle(arcus::curved::kFieldHandle, ctx) {}
   arcus_field_desc_d desc{};  // kind, parameters (double)
   std::vector<double> data;   // atmosphere segments or grid values
   // The data on the device, per precision (double, float), uploaded on first use and

@@ -5,58 +5,32 @@
 
 #include "core/call.h"
 #include "curved/advance.h"
+#include "curved/field_scene.h"
 #include "curved/fields.h"
 #include "curved/scene_desc.h"
 #include "scene/scene.h"
 
-using arcus::HandleType;
 using arcus::require_pointer;
 using namespace arcus::api;
 
 namespace arcus::curved {
 namespace {
 
-struct CurvedScene : arcus_scene_s {
-  CurvedScene(arcus_context_t* ctx, SceneDesc d) : arcus_scene_s(ctx, "curved"), desc(std::move(d)) {}
-  // Deleted under the context's lock (release_object): the field goes the same way.
-  ~CurvedScene() override {
-    if (field && field->drop()) {
-      delete field;
-      release_context(owner());
-    }
-  }
+struct CurvedScene : FieldScene {
+  CurvedScene(arcus_context_t* ctx, SceneDesc d) : FieldScene(ctx, "curved"), desc(std::move(d)) {}
   SceneDesc desc;
-  arcus_field_s* field = nullptr;  // the scene's reference
 };
 
 // Everything is read and built before the context's lock is taken; only the library
 // objects are created under it.  A bad medium is reported with the scene file's name.
 arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::Locked& locked) {
   SceneDesc desc = parse_scene_file(path);
-  // The settings are checked now, so a bad scene fails where it is read, naming its file.
-  try {
-    check_advance_params(desc.params, desc.medium.kind == ARCUS_FIELD_CONSTANT);
-  } catch (const Error& e) {
-    fail(e.status(), path + ": $.integrator: " + e.what());
-  }
-  FieldBuild built;
-  try {
-    built = build_field(desc.medium);
-  } catch (const Error& e) {
-    fail(e.status(), path + ": $.medium: " + e.what());
-  }
+  FieldBuild built = build_scene_medium(desc.medium, desc.params, path);
   auto scene = std::make_unique<CurvedScene>(ctx, std::move(desc));
   scene->name = scene->desc.name;
   scene->description = scene->desc.description;
   scene->document = scene->desc.document;
-  locked([&] {
-    auto field = std::make_unique<arcus_field_s>(ctx);
-    field->desc = built.desc;
-    field->data = std::move(built.data);
-    retain_context(ctx);  // the field's reference
-    retain_context(ctx);  // the scene's
-    scene->field = field.release();
-  });
+  scene->attach_field(std::move(built), locked);
   return scene.release();
 }
 
@@ -64,7 +38,7 @@ const scene::LoaderEntry kLoader("curved", load);
 
 template <class Body>
 arcus_status on_curved_scene(arcus_scene_t* scene, Body&& body) {
-  return on<arcus_scene_s>(scene, HandleType::Scene, "scene", [&](arcus_scene_s* s, std::string* message) {
+  return on<arcus_scene_s>(scene, arcus::scene::kSceneHandle, "scene", [&](arcus_scene_s* s, std::string* message) {
     auto* c = dynamic_cast<CurvedScene*>(s);
     if (!c) fail(ARCUS_ERROR_INVALID_ARGUMENT, std::string("scene is a ") + s->engine + " scene, not a curved one");
     return body(c, message);

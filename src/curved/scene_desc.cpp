@@ -10,6 +10,7 @@
 #include "core/format.h"
 #include "core/limits.h"
 #include "curved/params.h"
+#include "scene/common_keys.h"
 #include "scene/json_reader.h"
 
 namespace arcus::curved {
@@ -23,14 +24,10 @@ using json::Node;
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kMaxFanDegrees = 360.0;  // beyond a full turn a fan only repeats itself
 
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
 double max_abs(const Vec3& v) { return std::max({std::fabs(v[0]), std::fabs(v[1]), std::fabs(v[2])}); }
-// Scaled by the largest component first, so that neither 1e200 (v·v overflows) nor
-// 1e-200 (v·v underflows) loses the direction.
-Vec3 normalized(const Vec3& v) {
+// The unit vector along v, scaled by the largest component first, so that neither 1e200
+// (v·v overflows) nor 1e-200 (v·v underflows) loses the direction.
+Vec3 direction_of(const Vec3& v) {
   const double m = max_abs(v);
   const Vec3 w{v[0] / m, v[1] / m, v[2] / m};
   const double inv = 1.0 / std::sqrt(dot(w, w));
@@ -44,7 +41,7 @@ Vec3 rotated(const Vec3& v, const Vec3& k, double a) {
   return {v[0] * c + kxv[0] * s + k[0] * kv, v[1] * c + kxv[1] * s + k[1] * kv, v[2] * c + kxv[2] * s + k[2] * kv};
 }
 
-void append(std::vector<double>* out, const Vec3& v) { out->insert(out->end(), v.begin(), v.end()); }
+void append(std::vector<double>* out, const Vec3& v) { out->insert(out->end(), {v.x, v.y, v.z}); }
 
 Vec3 nonzero_vec3(const Node& node) {
   const Vec3 v = node.vec3();
@@ -172,8 +169,8 @@ double fan_angle(const Node& node) {
 
 std::vector<Vec3> fan_directions(const Node& fan, const SceneLimits& limits) {
   fan.expect_object({"direction", "plane_normal", "min_deg", "max_deg", "count"});
-  const Vec3 dir = normalized(nonzero_vec3(fan.member("direction")));
-  const Vec3 axis = normalized(nonzero_vec3(fan.member("plane_normal")));
+  const Vec3 dir = direction_of(nonzero_vec3(fan.member("direction")));
+  const Vec3 axis = direction_of(nonzero_vec3(fan.member("plane_normal")));
   // A normal off the perpendicular would sweep a cone instead of a plane.
   if (std::fabs(dot(dir, axis)) > 1e-9) fan.member("plane_normal").fail("must be perpendicular to fan.direction");
   const double lo = fan_angle(fan.member("min_deg")), hi = fan_angle(fan.member("max_deg"));
@@ -285,21 +282,11 @@ void parse_integrator(const Node& in, arcus_advance_params* p) {
 void parse_box(const Node& box, arcus_advance_params* p) {
   box.expect_object({"min", "max"});
   const Vec3 lo = box.member("min").vec3(), hi = box.member("max").vec3();
-  for (size_t a = 0; a < 3; ++a)
+  for (int a = 0; a < 3; ++a)
     if (!(lo[a] < hi[a])) box.member("max").fail("must exceed min on every axis");
   p->use_box = 1;
-  std::copy(lo.begin(), lo.end(), p->box_min);
-  std::copy(hi.begin(), hi.end(), p->box_max);
-}
-
-// Tools name their output directory after the scene, so the name must be a plain one.
-std::string parse_name(const Node& node) {
-  const std::string name = node.string();
-  const bool plain = !name.empty() && name != "." && name != ".." && std::all_of(name.begin(), name.end(), [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
-  });
-  if (!plain) node.fail("use letters, digits, '_', '-' and '.' only (it names the output directory)");
-  return name;
+  store(lo, p->box_min);
+  store(hi, p->box_max);
 }
 
 namespace {
@@ -309,7 +296,7 @@ SceneDesc parse_document(const Document& doc, const std::string& base_dir, const
   s.file = doc.file_name();
   const Node root = doc.root();
   root.expect_object({"name", "description", "medium", "rays", "integrator", "box", "record_path", "path_capacity"});
-  s.name = parse_name(root.member("name"));
+  s.name = scene::parse_name(root.member("name"));
   if (auto v = root.find("description")) s.description = v->string();
   parse_medium(root.member("medium"), base_dir, &s.medium);
   parse_rays(root.member("rays"), limits, &s);

@@ -11,11 +11,10 @@
 #include <vector>
 
 #include "arcus/arcus.h"
+#include "geometry/vec3.h"
 #include "scene/json_reader.h"
 
 namespace arcus::curved {
-
-using Vec3 = std::array<double, 3>;
 
 struct AtmosphereDesc {  // defaults: arcus_atmosphere_desc_init's
   bool spherical = false;
@@ -69,7 +68,6 @@ struct SceneLimits {
 void parse_medium(const json::Node& node, const std::string& base_dir, MediumDesc* out);
 void parse_integrator(const json::Node& node, arcus_advance_params* params);
 void parse_box(const json::Node& node, arcus_advance_params* params);
-std::string parse_name(const json::Node& node);  // names an output directory: plain
 
 // "constant", "linear", ... as in the file.
 const char* medium_type_name(arcus_field_kind kind);

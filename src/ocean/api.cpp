@@ -11,17 +11,20 @@
 #include "ocean/render.h"
 #include "ocean/scene.h"
 #include "ocean/trace.h"
-#include "render/scene_desc.h"
 #include "ocean/water.h"
+#include "scene/common_keys.h"
 
-using arcus::HandleType;
 using arcus::require;
 using arcus::require_pointer;
 using namespace arcus::api;
 namespace ocean = arcus::ocean;
 
+namespace arcus::ocean {
+const HandleKind kWaterHandle("water");
+}  // namespace arcus::ocean
+
 struct arcus_water_s : arcus::Handle {
-  arcus_water_s(arcus_context_t* ctx, ocean::Water w) : Handle(HandleType::Water, ctx), water(std::move(w)) {}
+  arcus_water_s(arcus_context_t* ctx, ocean::Water w) : Handle(arcus::ocean::kWaterHandle, ctx), water(std::move(w)) {}
   ocean::Water water;
 };
 
@@ -130,7 +133,7 @@ ocean::Grid grid_of(const arcus_wavelength_grid& g) {
 
 template <class Make>
 arcus_status create_water(arcus_context_t* ctx, arcus_water_t** out, Make&& make) {
-  return simple<arcus_context_s>(ctx, HandleType::Context, "ctx", [&](arcus_context_s*) {
+  return simple<arcus_context_s>(ctx, arcus::kContextHandle, "ctx", [&](arcus_context_s*) {
     require_pointer(out, "out");
     *out = nullptr;
     ocean::Water w = make();
@@ -269,12 +272,12 @@ arcus_status arcus_water_create_iops(arcus_context_t* ctx, const arcus_water_iop
   });
 }
 
-arcus_status arcus_water_retain(arcus_water_t* water) { return retain(water, HandleType::Water, "water"); }
-arcus_status arcus_water_release(arcus_water_t* water) { return release(water, HandleType::Water, "water"); }
+arcus_status arcus_water_retain(arcus_water_t* water) { return retain(water, arcus::ocean::kWaterHandle, "water"); }
+arcus_status arcus_water_release(arcus_water_t* water) { return release(water, arcus::ocean::kWaterHandle, "water"); }
 
 arcus_status arcus_water_get_coefficients(arcus_water_t* water, const arcus_wavelength_grid* grid, double* events,
                                           double* absorption, double* scattering) {
-  return simple<arcus_water_s>(water, HandleType::Water, "water", [&](arcus_water_s* w) {
+  return simple<arcus_water_s>(water, arcus::ocean::kWaterHandle, "water", [&](arcus_water_s* w) {
     require_pointer(grid, "grid");
     const ocean::WaterTables t = ocean::evaluate(w->water, grid_of(*grid));
     const size_t n = grid->count;
@@ -314,12 +317,12 @@ arcus_status arcus_ocean_trace_params_init(arcus_ocean_trace_params* params) {
 
 arcus_status arcus_ocean_trace(arcus_context_t* ctx, arcus_water_t* water, const arcus_ocean_setup* setup,
                                const arcus_ocean_trace_params* params, arcus_job_t** job) {
-  return on<arcus_context_s>(ctx, HandleType::Context, "ctx", [&](arcus_context_s*, std::string* message) {
+  return on<arcus_context_s>(ctx, arcus::kContextHandle, "ctx", [&](arcus_context_s*, std::string* message) {
     require_pointer(job, "job");
     *job = nullptr;
     require_pointer(setup, "setup");
     require_pointer(params, "params");
-    auto* w = arcus::api::object_of<arcus_water_s>(ctx, water, HandleType::Water, "water");
+    auto* w = arcus::api::object_of<arcus_water_s>(ctx, water, arcus::ocean::kWaterHandle, "water");
     const TraceInput in = trace_input(setup, params);
     ocean::check_trace(in.lights, in.medium, in.params);  // before the water is evaluated: cheap errors first
     const ocean::WaterTables tables = ocean::evaluate(w->water, grid_of(setup->grid));
@@ -404,17 +407,17 @@ arcus_status arcus_ocean_march_init(arcus_ocean_march* march) {
 arcus_status arcus_ocean_render(arcus_context_t* ctx, arcus_water_t* water, const arcus_ocean_setup* setup,
                                 const arcus_ocean_trace_params* params, const arcus_camera* camera,
                                 const arcus_ocean_march* march, arcus_job_t** job) {
-  return on<arcus_context_s>(ctx, HandleType::Context, "ctx", [&](arcus_context_s*, std::string* message) {
+  return on<arcus_context_s>(ctx, arcus::kContextHandle, "ctx", [&](arcus_context_s*, std::string* message) {
     require_pointer(job, "job");
     *job = nullptr;
     require_pointer(setup, "setup");
     require_pointer(params, "params");
     require_pointer(camera, "camera");
     require_pointer(march, "march");
-    auto* w = arcus::api::object_of<arcus_water_s>(ctx, water, HandleType::Water, "water");
+    auto* w = arcus::api::object_of<arcus_water_s>(ctx, water, arcus::ocean::kWaterHandle, "water");
     const TraceInput in = trace_input(setup, params);
     const ocean::MarchParams m = march_of(*march);
-    arcus::render::check_camera(arcus::render::camera_desc(*camera), "camera");
+    arcus::scene::check_camera(arcus::scene::camera_desc(*camera), "camera");
     ocean::check_march(m);
     ocean::check_trace(in.lights, in.medium, in.params);
     const ocean::WaterTables tables = ocean::evaluate(w->water, grid_of(setup->grid));
@@ -427,7 +430,7 @@ arcus_status arcus_ocean_render(arcus_context_t* ctx, arcus_water_t* water, cons
 
 arcus_status arcus_ocean_render_scene(arcus_scene_t* scene, arcus_progress_callback progress, void* user,
                                       arcus_job_t** job) {
-  return on<arcus_scene_s>(scene, HandleType::Scene, "scene", [&](arcus_scene_s* s, std::string* message) {
+  return on<arcus_scene_s>(scene, arcus::scene::kSceneHandle, "scene", [&](arcus_scene_s* s, std::string* message) {
     require_pointer(job, "job");
     *job = nullptr;
     const ocean::OceanSceneDesc& d = ocean::ocean_scene(s)->desc;

@@ -13,7 +13,7 @@
 #include "core/slices.h"
 #include "image/image_io.h"
 #include "photon/photon_map.h"
-#include "render/scene_desc.h"  // the pinhole camera's checks, shared
+#include "scene/common_keys.h"  // the pinhole camera's checks, shared
 #include "spectral/cie.h"
 #include "spectral/srgb.h"
 
@@ -160,7 +160,7 @@ std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const WaterTables& w, co
                                   const MarchParams& march, arcus_progress_callback progress, void* user,
                                   bool* cancelled) {
   const auto t0 = std::chrono::steady_clock::now();
-  render::check_camera(render::camera_desc(camera), "camera");
+  scene::check_camera(scene::camera_desc(camera), "camera");
   check_march(march);
   check_trace(lights, medium, trace_params);
   for (size_t l = 0; l < lights.size(); ++l)

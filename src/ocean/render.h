@@ -30,7 +30,7 @@ struct RenderJob : TraceJob {
   RenderStats render_stats;
 };
 
-// Throws INVALID_ARGUMENT naming the bad member (the camera: render::check_camera).
+// Throws INVALID_ARGUMENT naming the bad member (the camera: scene::check_camera).
 void check_march(const MarchParams& march);
 
 std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const WaterTables& water, const std::vector<Light>& lights,

@@ -12,8 +12,7 @@
 
 #include "core/context.h"  // retain_context
 #include "core/error.h"
-#include "curved/scene_desc.h"  // parse_name
-#include "render/scene_desc.h"  // check_camera: one pinhole camera, one set of checks
+#include "scene/common_keys.h"
 #include "scene/json_reader.h"
 
 namespace arcus::ocean {
@@ -155,16 +154,6 @@ Grid parse_grid(const Node& n) {
   return g;
 }
 
-void set3(double* to, const json::Vec3& v) {
-  for (int a = 0; a < 3; ++a) to[a] = v[a];
-}
-
-json::Vec3 unit(const Node& n) {
-  const json::Vec3 v = n.vec3();
-  const double len = std::hypot(v[0], v[1], v[2]);
-  if (!(len > 0) || !std::isfinite(len)) n.fail("expected a non-zero direction");
-  return {v[0] / len, v[1] / len, v[2] / len};
-}
 
 Light parse_light(const Node& n) {
   enum class Type { point, spot, sun, directional, sky };
@@ -178,13 +167,13 @@ Light parse_light(const Node& n) {
     case Type::point:
       n.expect_object({"type", "position", "spectrum"});
       L.kind = Light::point;
-      set3(L.position, n.member("position").vec3());
+      store(n.member("position").vec3(), L.position);
       break;
     case Type::spot:
       n.expect_object({"type", "position", "direction", "half_angle_deg", "spectrum"});
       L.kind = Light::spot;
-      set3(L.position, n.member("position").vec3());
-      set3(L.direction, unit(n.member("direction")));
+      store(n.member("position").vec3(), L.position);
+      store(scene::parse_direction(n.member("direction")), L.direction);
       L.half_angle_deg = n.member("half_angle_deg").number();
       break;
     case Type::sun: {
@@ -205,8 +194,8 @@ Light parse_light(const Node& n) {
     case Type::directional:
       n.expect_object({"type", "direction", "position", "radius", "spectrum"});
       L.kind = Light::directional;
-      set3(L.direction, unit(n.member("direction")));
-      if (auto v = n.find("position")) set3(L.position, v->vec3());
+      store(scene::parse_direction(n.member("direction")), L.direction);
+      if (auto v = n.find("position")) store(v->vec3(), L.position);
       if (auto v = n.find("radius")) L.radius = v->number();
       break;
     case Type::sky:
@@ -253,30 +242,6 @@ void parse_profile(const Node& n, TraceParams* p) {
   if (auto v = n.find("layer")) p->layer = v->number();
 }
 
-arcus_camera parse_camera(const Node& n) {
-  n.expect_object({"position", "look_at", "up", "vfov_deg", "width", "height"});
-  render::CameraDesc d;
-  d.position = n.member("position").vec3();
-  d.look_at = n.member("look_at").vec3();
-  d.up = {0, 0, 1};  // the surface is z = 0: up is +z
-  if (auto v = n.find("up")) d.up = v->vec3();
-  d.vfov_deg = n.member("vfov_deg").number();
-  d.width = static_cast<uint32_t>(n.member("width").integer(UINT32_MAX));
-  d.height = static_cast<uint32_t>(n.member("height").integer(UINT32_MAX));
-  try {
-    render::check_camera(d, "camera");
-  } catch (const Error& e) {
-    n.fail(e.what());
-  }
-  arcus_camera c{};
-  set3(c.position, d.position);
-  set3(c.look_at, d.look_at);
-  set3(c.up, d.up);
-  c.vfov_deg = d.vfov_deg;
-  c.width = d.width;
-  c.height = d.height;
-  return c;
-}
 
 MarchParams parse_march(const Node& n) {
   n.expect_object({"steps", "distance", "k", "estimator", "single_scattering", "multiple_scattering", "exposure"});
@@ -350,7 +315,7 @@ OceanSceneDesc parse_document(const Document& doc) {
   const Node root = doc.root();
   root.expect_object(
       {"name", "description", "water", "grid", "lights", "medium", "photons", "profile", "view"});
-  s.name = curved::parse_name(root.member("name"));
+  s.name = scene::parse_name(root.member("name"));
   if (auto v = root.find("description")) s.description = v->string();
   s.water = parse_water(root.member("water"));
   if (auto v = root.find("grid")) s.grid = parse_grid(*v);
@@ -363,7 +328,8 @@ OceanSceneDesc parse_document(const Document& doc) {
   if (auto v = root.find("view")) {
     v->expect_object({"camera", "march"});
     s.has_camera = true;
-    s.camera = parse_camera(v->member("camera"));
+    // The surface is z = 0: the world's up is +z.
+    s.camera = scene::camera_struct(scene::parse_camera(v->member("camera"), {0, 0, 1}));
     if (auto m = v->find("march")) s.march = parse_march(*m);
   }
   checked(file, [&] { check_water(s.water); }, {{"$.water.iops.phase.g_forward", "$.water.iops.phase.g"}});

@@ -22,9 +22,13 @@
 using namespace arcus;
 using namespace arcus::api;
 
+namespace arcus::rainbow {
+const HandleKind kParticleHandle("particle");
+}  // namespace arcus::rainbow
+
 struct arcus_particle_s : arcus::Handle {
   arcus_particle_s(arcus_context_t* ctx, rainbow::Particle p)
-      : Handle(HandleType::Particle, ctx), particle(std::move(p)) {}
+      : Handle(arcus::rainbow::kParticleHandle, ctx), particle(std::move(p)) {}
   rainbow::Particle particle;
 };
 
@@ -34,7 +38,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 template <class Make>
 arcus_status create_particle(arcus_context_t* ctx, arcus_particle_t** out, Make&& make) {
-  return simple<arcus_context_s>(ctx, HandleType::Context, "ctx", [&](arcus_context_s*) {
+  return simple<arcus_context_s>(ctx, arcus::kContextHandle, "ctx", [&](arcus_context_s*) {
     require_pointer(out, "out");
     *out = nullptr;
     auto particle = std::make_unique<arcus_particle_s>(ctx, make());
@@ -131,14 +135,14 @@ arcus_status arcus_particle_create_mesh(arcus_context_t* ctx, const char* path, 
 }
 
 arcus_status arcus_particle_retain(arcus_particle_t* particle) {
-  return retain(particle, HandleType::Particle, "particle");
+  return retain(particle, arcus::rainbow::kParticleHandle, "particle");
 }
 arcus_status arcus_particle_release(arcus_particle_t* particle) {
-  return release(particle, HandleType::Particle, "particle");
+  return release(particle, arcus::rainbow::kParticleHandle, "particle");
 }
 
 arcus_status arcus_particle_get_info(arcus_particle_t* particle, arcus_particle_info* info) {
-  return simple<arcus_particle_s>(particle, HandleType::Particle, "particle", [&](arcus_particle_s* p) {
+  return simple<arcus_particle_s>(particle, arcus::rainbow::kParticleHandle, "particle", [&](arcus_particle_s* p) {
     require_pointer(info, "info");
     *info = arcus_particle_info{};
     info->kind = p->particle.kind;
@@ -168,11 +172,11 @@ arcus_status arcus_rainbow_params_init(arcus_rainbow_params* params) {
 
 arcus_status arcus_rainbow_cast(arcus_context_t* ctx, arcus_particle_t* particle, const arcus_rainbow_params* params,
                                 arcus_job_t** job) {
-  return on<arcus_context_s>(ctx, HandleType::Context, "ctx", [&](arcus_context_s*, std::string* message) {
+  return on<arcus_context_s>(ctx, arcus::kContextHandle, "ctx", [&](arcus_context_s*, std::string* message) {
     require_pointer(job, "job");
     *job = nullptr;
     require_pointer(params, "params");
-    auto* p = object_of<arcus_particle_s>(ctx, particle, HandleType::Particle, "particle");
+    auto* p = object_of<arcus_particle_s>(ctx, particle, arcus::rainbow::kParticleHandle, "particle");
     rainbow::CastParams cp;
     cp.wavelength_nm = params->wavelength_nm;
     cp.n = index_of(params->material, params->wavelength_nm, params->temperature_c, params->refractive_index);
@@ -309,7 +313,7 @@ arcus_status arcus_rainbow_sky_init(arcus_rainbow_sky* sky) {
 
 arcus_status arcus_rainbow_render(arcus_context_t* ctx, const arcus_rainbow_table* table, const arcus_rainbow_sky* sky,
                                   arcus_job_t** job) {
-  return on<arcus_context_s>(ctx, HandleType::Context, "ctx", [&](arcus_context_s*, std::string* message) {
+  return on<arcus_context_s>(ctx, arcus::kContextHandle, "ctx", [&](arcus_context_s*, std::string* message) {
     require_pointer(job, "job");
     *job = nullptr;
     require_pointer(table, "table");

@@ -15,6 +15,7 @@
 #include "core/kernel_source.h"
 #include "core/runtime.h"
 #include "core/slices.h"
+#include "geometry/vec3.h"
 #include "image/image_io.h"
 #include "rainbow/rainbow_desc.h"
 #include "spectral/cie.h"
@@ -28,17 +29,6 @@ constexpr double kDeg = kPi / 180;
 constexpr double kGoldenAngle = 2.39996322972865332;  // π(3 − √5): the sunflower's turn
 
 const KernelSource kSky{"rainbow/sky", {"common/real.h", "rainbow/rainbow_desc.h", "rainbow/sky.cl"}, ""};
-
-using Vec = std::array<double, 3>;
-Vec cross(const Vec& a, const Vec& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec normalized(const Vec& a) {
-  const double n = std::sqrt(dot(a, a));
-  return {a[0] / n, a[1] / n, a[2] / n};
-}
-Vec vec(const double* v) { return {v[0], v[1], v[2]}; }
 
 bool finite3(const double* v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
 
@@ -87,7 +77,7 @@ std::vector<float> sky_behind_pixels(const arcus_rainbow_sky& s, const rainbow_s
   for (uint32_t py = 0; py < s.height; ++py)
     for (uint32_t px = 0; px < s.width; ++px) {
       const double u = (2 * (px + 0.5) / s.width - 1) * d.half_width, v = (1 - 2 * (py + 0.5) / s.height) * d.half_height;
-      Vec ray;
+      Vec3 ray;
       for (int a = 0; a < 3; ++a) ray[a] = d.forward[a] + u * d.right[a] + v * d.up[a];
       ray = normalized(ray);
       // This engine's +x lies to the right of a camera looking along +z, the renderer's
@@ -129,11 +119,11 @@ void check_sky(const arcus_rainbow_table& t, const arcus_rainbow_sky& s) {
               size_t(s.width) * s.height <= (size_t(1) << 28),
           "sky width and height must be 1-16384, got " + std::to_string(s.width) + " × " + std::to_string(s.height));
   require(finite3(s.camera_position), "sky.camera_position must be finite");
-  require(finite3(s.camera_forward) && dot(vec(s.camera_forward), vec(s.camera_forward)) > 0,
+  require(finite3(s.camera_forward) && dot(vec3(s.camera_forward), vec3(s.camera_forward)) > 0,
           "sky.camera_forward must be a finite non-zero vector");
-  require(finite3(s.camera_up) && dot(cross(vec(s.camera_forward), vec(s.camera_up)),
-                                      cross(vec(s.camera_forward), vec(s.camera_up))) > 1e-12 *
-                                      dot(vec(s.camera_forward), vec(s.camera_forward)) * dot(vec(s.camera_up), vec(s.camera_up)),
+  require(finite3(s.camera_up) && dot(cross(vec3(s.camera_forward), vec3(s.camera_up)),
+                                      cross(vec3(s.camera_forward), vec3(s.camera_up))) > 1e-12 *
+                                      dot(vec3(s.camera_forward), vec3(s.camera_forward)) * dot(vec3(s.camera_up), vec3(s.camera_up)),
           "sky.camera_up must be finite and not parallel to camera_forward");
   require(std::isfinite(s.fov_deg) && s.fov_deg > 0 && s.fov_deg < 180,
           "sky.fov_deg must lie in (0, 180), got " + number(s.fov_deg));
@@ -223,18 +213,18 @@ std::unique_ptr<SkyJob> render_sky(arcus_context_t* ctx, const arcus_rainbow_tab
   // ---- the camera, the sun and its light frame (the table's: light along −sun, +y the
   // world's up across the light, +x = y × z)
   rainbow_sky_desc d{};
-  const Vec f = normalized(vec(s.camera_forward));
-  const Vec right = normalized(cross(vec(s.camera_up), f));
-  const Vec up = cross(f, right);
+  const Vec3 f = normalized(vec3(s.camera_forward));
+  const Vec3 right = normalized(cross(vec3(s.camera_up), f));
+  const Vec3 up = cross(f, right);
   const double e = s.sun_elevation_deg * kDeg, a = s.sun_azimuth_deg * kDeg;
-  const Vec sun{std::cos(e) * std::sin(a), std::sin(e), std::cos(e) * std::cos(a)};
-  const Vec light{-sun[0], -sun[1], -sun[2]};
-  const Vec world_up{0, 1, 0};
+  const Vec3 sun{std::cos(e) * std::sin(a), std::sin(e), std::cos(e) * std::cos(a)};
+  const Vec3 light{-sun[0], -sun[1], -sun[2]};
+  const Vec3 world_up{0, 1, 0};
   const double uk = dot(world_up, light);
   // A sun at the zenith leaves "up across the light" undefined: any horizontal will do.
-  const Vec y_light = std::fabs(uk) > 1 - 1e-12 ? Vec{0, 0, 1}
+  const Vec3 y_light = std::fabs(uk) > 1 - 1e-12 ? Vec3{0, 0, 1}
                                                  : normalized({-uk * light[0], 1 - uk * light[1], -uk * light[2]});
-  const Vec x_light = cross(y_light, light);
+  const Vec3 x_light = cross(y_light, light);
   for (int c = 0; c < 3; ++c) {
     d.camera[c] = s.camera_position[c];
     d.forward[c] = f[c];

@@ -5,7 +5,7 @@
 // the horizon, positive sizes) are checked where the values are used.
 #include <string>
 
-#include "curved/scene_desc.h"  // parse_name
+#include "scene/common_keys.h"  // parse_name
 #include "scene/json_reader.h"
 #include "scene/scene.h"
 #include "sweep/spec.h"  // check_axis: tables' axes are written as sweep specs write them
@@ -86,7 +86,7 @@ void check_background(const Node& b, bool image_allowed) {
 
 void check_scene(const Node& root) {
   root.expect_object({"name", "description", "image", "camera", "sun", "rain", "background", "tables"});
-  if (auto v = root.find("name")) curved::parse_name(*v);
+  if (auto v = root.find("name")) scene::parse_name(*v);
   if (auto v = root.find("description")) v->string();
   if (auto img = root.find("image")) {
     img->expect_object({"width", "height", "fov_deg", "exposure"});

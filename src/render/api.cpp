@@ -8,7 +8,6 @@
 #include "curved/advance.h"
 #include "render/renderer.h"
 
-using arcus::HandleType;
 using arcus::require;
 using arcus::require_pointer;
 using arcus::render::RenderJob;
@@ -18,7 +17,7 @@ namespace {
 
 template <class Body>
 arcus_status on_renderer(arcus_renderer_t* r, Body&& body) {
-  return simple<arcus_renderer_s>(r, HandleType::Renderer, "renderer", body);
+  return simple<arcus_renderer_s>(r, arcus::render::kRendererHandle, "renderer", body);
 }
 
 template <class Body>
@@ -31,7 +30,7 @@ arcus_status on_render_job(arcus_job_t* job, Body&& body) {
 extern "C" {
 
 arcus_status arcus_renderer_create(arcus_scene_t* scene, arcus_renderer_t** out) {
-  return simple<arcus_scene_s>(scene, HandleType::Scene, "scene", [&](arcus_scene_s* s) {
+  return simple<arcus_scene_s>(scene, arcus::scene::kSceneHandle, "scene", [&](arcus_scene_s* s) {
     require_pointer(out, "out");
     *out = nullptr;
     auto* rs = arcus::render::render_scene(s);
@@ -41,11 +40,11 @@ arcus_status arcus_renderer_create(arcus_scene_t* scene, arcus_renderer_t** out)
   });
 }
 
-arcus_status arcus_renderer_retain(arcus_renderer_t* r) { return retain(r, HandleType::Renderer, "renderer"); }
-arcus_status arcus_renderer_release(arcus_renderer_t* r) { return release(r, HandleType::Renderer, "renderer"); }
+arcus_status arcus_renderer_retain(arcus_renderer_t* r) { return retain(r, arcus::render::kRendererHandle, "renderer"); }
+arcus_status arcus_renderer_release(arcus_renderer_t* r) { return release(r, arcus::render::kRendererHandle, "renderer"); }
 
 arcus_status arcus_renderer_set_techniques(arcus_renderer_t* r, uint32_t techniques) {
-  return on<arcus_renderer_s>(r, HandleType::Renderer, "renderer", [&](arcus_renderer_s* x, std::string*) {
+  return on<arcus_renderer_s>(r, arcus::render::kRendererHandle, "renderer", [&](arcus_renderer_s* x, std::string*) {
     const std::string problem = arcus::render::technique_problem(*x, techniques);
     if (!problem.empty()) arcus::fail(ARCUS_ERROR_UNSUPPORTED, problem);
     x->techniques = techniques;
@@ -63,8 +62,8 @@ arcus_status arcus_renderer_get_techniques(arcus_renderer_t* r, uint32_t* techni
 arcus_status arcus_renderer_set_camera(arcus_renderer_t* r, const arcus_camera* camera) {
   return on_renderer(r, [&](arcus_renderer_s* x) {
     require_pointer(camera, "camera");
-    const arcus::render::CameraDesc d = arcus::render::camera_desc(*camera);
-    arcus::render::check_camera(d, "camera");
+    const arcus::scene::CameraDesc d = arcus::scene::camera_desc(*camera);
+    arcus::scene::check_camera(d, "camera");
     for (int a = 0; a < 3; ++a)
       require(d.position[a] > x->scene->lo[a] && d.position[a] < x->scene->hi[a],
               "camera: the position must lie inside the scene's bounds");
@@ -76,15 +75,7 @@ arcus_status arcus_renderer_set_camera(arcus_renderer_t* r, const arcus_camera* 
 arcus_status arcus_renderer_get_camera(arcus_renderer_t* r, arcus_camera* camera) {
   return on_renderer(r, [&](arcus_renderer_s* x) {
     require_pointer(camera, "camera");
-    const auto& d = x->camera;
-    for (int a = 0; a < 3; ++a) {
-      camera->position[a] = d.position[a];
-      camera->look_at[a] = d.look_at[a];
-      camera->up[a] = d.up[a];
-    }
-    camera->vfov_deg = d.vfov_deg;
-    camera->width = d.width;
-    camera->height = d.height;
+    *camera = arcus::scene::camera_struct(x->camera);
   });
 }
 

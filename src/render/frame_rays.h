@@ -11,7 +11,7 @@
 
 #include "render/scene.h"
 #include "render/trace.h"
-#include "render/vec3.h"
+#include "geometry/vec3.h"
 
 namespace arcus::render {
 
@@ -21,21 +21,21 @@ uint64_t percentile999(std::vector<uint64_t> steps);
 
 // The camera's frame: forward, right and true up.
 struct Frame {
-  V3 origin, forward, right, up;
+  Vec3 origin, forward, right, up;
   double tan_half, aspect;
 };
 
 Frame camera_frame(const CameraDesc& c);
 
 // Pixel (i, j)'s direction: through its centre, rows top to bottom.
-V3 pixel_direction(const Frame& f, const CameraDesc& c, uint32_t i, uint32_t j);
+Vec3 pixel_direction(const Frame& f, const CameraDesc& c, uint32_t i, uint32_t j);
 
 // A batch of rays to trace and where their results go.
 struct Batch {
   std::vector<double> origins, directions;
   std::vector<int32_t> predictions;
   std::vector<size_t> pixels;
-  void add(V3 o, V3 d, size_t pixel, int32_t prediction) {
+  void add(Vec3 o, Vec3 d, size_t pixel, int32_t prediction) {
     origins.insert(origins.end(), {o.x, o.y, o.z});
     directions.insert(directions.end(), {d.x, d.y, d.z});
     predictions.push_back(prediction);

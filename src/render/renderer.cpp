@@ -15,8 +15,12 @@
 #include "render/shading.h"
 #include "render/trace.h"
 
+namespace arcus::render {
+const HandleKind kRendererHandle("renderer");
+}  // namespace arcus::render
+
 arcus_renderer_s::arcus_renderer_s(arcus_context_t* ctx, arcus::render::RenderScene* s)
-    : Handle(arcus::HandleType::Renderer, ctx), scene(s), camera(s->desc.camera), techniques(s->desc.techniques),
+    : Handle(arcus::render::kRendererHandle, ctx), scene(s), camera(s->desc.camera), techniques(s->desc.techniques),
       params(s->desc.params) {
   scene->retain();
 }

@@ -33,6 +33,10 @@ struct ShadowMemory {
 };
 }  // namespace arcus::render
 
+namespace arcus::render {
+extern const HandleKind kRendererHandle;  // "renderer"
+}  // namespace arcus::render
+
 struct arcus_renderer_s : arcus::Handle {
   arcus_renderer_s(arcus_context_t* ctx, arcus::render::RenderScene* scene);
   ~arcus_renderer_s() override;

@@ -49,22 +49,12 @@ arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::
   auto scene = std::make_unique<RenderScene>(ctx);
   RenderDesc& d = scene->desc;
   d = parse_render_file(path);
-  try {
-    curved::check_advance_params(d.params, d.medium.kind == ARCUS_FIELD_CONSTANT);
-  } catch (const Error& e) {
-    fail(e.status(), path + ": $.integrator: " + e.what());
-  }
-  curved::FieldBuild field;
-  try {
-    field = curved::build_field(d.medium);
-  } catch (const Error& e) {
-    fail(e.status(), path + ": $.medium: " + e.what());
-  }
+  curved::FieldBuild field = curved::build_scene_medium(d.medium, d.params, path);
 
   std::array<double, 3> lo, hi;
   lo.fill(INFINITY);
   hi.fill(-INFINITY);
-  grow(&lo, &hi, d.camera.position.data());
+  grow(&lo, &hi, d.camera.position.array().data());
   std::vector<geometry::Mesh> meshes;
   for (size_t i = 0; i < d.objects.size(); ++i) {
     const ObjectDesc& o = d.objects[i];
@@ -157,27 +147,13 @@ arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::
   scene->name = d.name;
   scene->description = d.description;
   scene->document = d.document;
-  locked([&] {
-    auto f = std::make_unique<arcus_field_s>(ctx);
-    f->desc = field.desc;
-    f->data = std::move(field.data);
-    retain_context(ctx);  // the field's reference
-    retain_context(ctx);  // the scene's
-    scene->field = f.release();
-  });
+  scene->attach_field(std::move(field), locked);
   return scene.release();
 }
 
 const scene::LoaderEntry kLoader("render", load, "camera");
 
 }  // namespace
-
-RenderScene::~RenderScene() {
-  if (field && field->drop()) {
-    delete field;
-    release_context(owner());
-  }
-}
 
 void RenderScene::upload(arcus_context_t* ctx, bool single) {
   const int i = single ? 1 : 0;

@@ -4,6 +4,7 @@
 // device copies are made on first use and kept for every later frame.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <vector>
@@ -11,7 +12,7 @@
 #include "bvh/bvh.h"
 #include "bvh/device_bvh.h"
 #include "core/buffer.h"
-#include "curved/fields.h"
+#include "curved/field_scene.h"
 #include "image/image_io.h"
 #include "curved/advance_desc.h"  // kernels/curved/advance_desc.h: the ray status codes
 #include "render/render_desc.h"   // kernels/render/render_desc.h
@@ -20,12 +21,10 @@
 
 namespace arcus::render {
 
-struct RenderScene : arcus_scene_s {
-  explicit RenderScene(arcus_context_t* ctx) : arcus_scene_s(ctx, "render") {}
-  ~RenderScene() override;
+struct RenderScene : curved::FieldScene {
+  explicit RenderScene(arcus_context_t* ctx) : FieldScene(ctx, "render") {}
 
   RenderDesc desc;
-  arcus_field_s* field = nullptr;  // the scene's reference
   bvh::TriangleBvh triangles;      // every mesh's triangles, object by object
   std::vector<uint32_t> slot_of;   // per triangle index: its slot in triangles.triangles
   std::vector<int32_t> mesh_object;  // per mesh of `triangles`: its index in desc.objects
@@ -41,6 +40,15 @@ struct RenderScene : arcus_scene_s {
   std::shared_ptr<DeviceBuffer> device_shapes[2];
   void upload(arcus_context_t* ctx, bool single);
 };
+
+// The largest side of the scene's bounds: the scale of its tolerances.
+inline double scene_scale(const RenderScene& s) {
+  return std::max({s.hi[0] - s.lo[0], s.hi[1] - s.lo[1], s.hi[2] - s.lo[2]});
+}
+
+// How far a ray leaving a surface (a shadow ray, a bounced photon) starts off it: a
+// little more than the crossing tolerance, so that it does not find that surface again.
+inline double surface_offset(const RenderScene& s) { return 1e-6 * scene_scale(s) + 1e-4; }
 
 // The scene behind a handle, checked to be a render scene.
 RenderScene* render_scene(arcus_scene_s* scene);

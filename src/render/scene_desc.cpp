@@ -18,8 +18,6 @@ namespace fs = std::filesystem;
 using json::Document;
 using json::Node;
 
-constexpr uint32_t kMaxSide = 16384;
-
 std::string resolved(const Node& node, const std::string& base_dir) {
   const fs::path p(node.string());
   if (p.empty()) node.fail("expected a file name");
@@ -28,17 +26,11 @@ std::string resolved(const Node& node, const std::string& base_dir) {
 
 Vec3 colour(const Node& node) {
   const Vec3 c = node.vec3();
-  for (double v : c)
-    if (v < 0) node.fail("expected non-negative values");
+  for (int a = 0; a < 3; ++a)
+    if (c[a] < 0) node.fail("expected non-negative values");
   return c;
 }
 
-Vec3 unit(const Node& node) {
-  const Vec3 v = node.vec3();
-  const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  if (!(len > 0) || !std::isfinite(len)) node.fail("expected a non-zero direction");
-  return {v[0] / len, v[1] / len, v[2] / len};
-}
 
 double positive(const Node& node) {
   const double v = node.number();
@@ -46,22 +38,6 @@ double positive(const Node& node) {
   return v;
 }
 
-CameraDesc parse_camera(const Node& c) {
-  c.expect_object({"position", "look_at", "up", "vfov_deg", "width", "height"});
-  CameraDesc d;
-  d.position = c.member("position").vec3();
-  d.look_at = c.member("look_at").vec3();
-  if (auto v = c.find("up")) d.up = v->vec3();
-  d.vfov_deg = c.member("vfov_deg").number();
-  d.width = static_cast<uint32_t>(c.member("width").integer(kMaxSide));
-  d.height = static_cast<uint32_t>(c.member("height").integer(kMaxSide));
-  try {
-    check_camera(d, "camera");
-  } catch (const Error& e) {
-    c.fail(e.what());
-  }
-  return d;
-}
 
 MaterialDesc parse_material(const Node& m, const std::string& name, const std::string& base_dir) {
   m.expect_object({"diffuse", "texture", "uv_scale", "emission", "blackbody_k"});
@@ -94,8 +70,8 @@ ObjectDesc parse_object(const Node& o, const std::map<std::string, int>& materia
           d.scale = {s, s, s};
         } else {
           d.scale = v->vec3();
-          for (double s : d.scale)
-            if (!(s > 0)) v->fail("expected positive scale factors");
+          for (int a = 0; a < 3; ++a)
+            if (!(d.scale[a] > 0)) v->fail("expected positive scale factors");
         }
       }
       if (auto v = o.find("rotate_deg")) d.rotate_deg = v->vec3();
@@ -108,7 +84,7 @@ ObjectDesc parse_object(const Node& o, const std::map<std::string, int>& materia
     case ObjectKind::Disc:
       o.expect_object({"type", "center", "normal", "radius", "material"});
       d.center = o.member("center").vec3();
-      d.normal = unit(o.member("normal"));
+      d.normal = scene::parse_direction(o.member("normal"));
       d.radius = positive(o.member("radius"));
       break;
   }
@@ -124,7 +100,7 @@ LightDesc parse_light(const Node& l) {
   d.kind = l.member("type").choice<LightKind>({{"sun", LightKind::Sun}, {"point", LightKind::Point}});
   if (d.kind == LightKind::Sun) {
     l.expect_object({"type", "direction", "irradiance"});
-    d.direction = unit(l.member("direction"));
+    d.direction = scene::parse_direction(l.member("direction"));
     d.power = colour(l.member("irradiance"));
   } else {
     l.expect_object({"type", "position", "intensity"});
@@ -199,7 +175,7 @@ RenderDesc parse_document(const Document& doc, const std::string& base_dir) {
   const Node root = doc.root();
   root.expect_object({"name", "description", "medium", "integrator", "bounds", "camera", "materials", "objects",
                       "lights", "sky", "spectral", "photons", "techniques", "exposure"});
-  s.name = curved::parse_name(root.member("name"));
+  s.name = scene::parse_name(root.member("name"));
   if (auto v = root.find("description")) s.description = v->string();
   curved::parse_medium(root.member("medium"), base_dir, &s.medium);
   curved::default_advance_params(&s.params);
@@ -208,7 +184,7 @@ RenderDesc parse_document(const Document& doc, const std::string& base_dir) {
     curved::parse_box(*v, &s.params);
     s.has_bounds = true;
   }
-  s.camera = parse_camera(root.member("camera"));
+  s.camera = scene::parse_camera(root.member("camera"), {0, 1, 0});
   std::map<std::string, int> names;
   if (auto v = root.find("materials")) {
     if (!v->is_object()) v->fail("expected an object of named materials");
@@ -239,36 +215,7 @@ RenderDesc parse_document(const Document& doc, const std::string& base_dir) {
   return s;
 }
 
-double norm(const Vec3& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
-
 }  // namespace
-
-void check_camera(const CameraDesc& c, const std::string& what) {
-  for (int a = 0; a < 3; ++a)
-    require(std::isfinite(c.position[a]) && std::isfinite(c.look_at[a]) && std::isfinite(c.up[a]),
-            what + ": position, look_at and up must be finite");
-  const Vec3 f{c.look_at[0] - c.position[0], c.look_at[1] - c.position[1], c.look_at[2] - c.position[2]};
-  require(norm(f) > 0, what + ": look_at must differ from position");
-  const Vec3 x{f[1] * c.up[2] - f[2] * c.up[1], f[2] * c.up[0] - f[0] * c.up[2], f[0] * c.up[1] - f[1] * c.up[0]};
-  require(norm(x) > 1e-9 * norm(f) * norm(c.up), what + ": up must not be zero or along the view direction");
-  require(std::isfinite(c.vfov_deg) && c.vfov_deg > 0 && c.vfov_deg < 180,
-          what + ": vfov_deg = " + number(c.vfov_deg) + " must lie strictly between 0 and 180");
-  require(c.width >= 1 && c.height >= 1 && c.width <= kMaxSide && c.height <= kMaxSide,
-          what + ": width and height must be 1.." + std::to_string(kMaxSide) + " pixels");
-}
-
-CameraDesc camera_desc(const arcus_camera& c) {
-  CameraDesc d;
-  for (int a = 0; a < 3; ++a) {
-    d.position[a] = c.position[a];
-    d.look_at[a] = c.look_at[a];
-    d.up[a] = c.up[a];
-  }
-  d.vfov_deg = c.vfov_deg;
-  d.width = c.width;
-  d.height = c.height;
-  return d;
-}
 
 uint32_t parse_techniques(const std::string& list) {
   static const std::pair<const char*, uint32_t> kNames[] = {{"smart_step", ARCUS_TECHNIQUE_SMART_STEP},

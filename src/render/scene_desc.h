@@ -9,10 +9,11 @@
 
 #include "arcus/arcus.h"
 #include "curved/scene_desc.h"
+#include "scene/common_keys.h"
 
 namespace arcus::render {
 
-using curved::Vec3;
+using scene::CameraDesc;
 
 struct MaterialDesc {
   std::string name;
@@ -54,12 +55,6 @@ struct SkyDesc {
   double intensity = 1;                        // image: scale
 };
 
-struct CameraDesc {
-  Vec3 position{0, 0, 0}, look_at{0, 0, -1}, up{0, 1, 0};
-  double vfov_deg = 45;
-  uint32_t width = 64, height = 64;
-};
-
 struct PhotonDesc {
   uint64_t count = 0;  // 0: no photon map
   uint32_t estimate = 100;
@@ -84,12 +79,6 @@ struct RenderDesc {
 
 RenderDesc parse_render_text(const std::string& text, const std::string& file_name, const std::string& base_dir);
 RenderDesc parse_render_file(const std::string& path);
-
-// Checks a camera: finite, look_at != position, up not along the view, 0 < vfov < 180,
-// 1..16384 pixels a side.  Throws INVALID_ARGUMENT naming `what`'s member.
-void check_camera(const CameraDesc& camera, const std::string& what);
-// The C API's camera as a description (every engine with a pinhole camera shares it).
-CameraDesc camera_desc(const arcus_camera& camera);
 
 // "smart_step,symmetry" -> bits; throws INVALID_ARGUMENT naming an unknown one.
 uint32_t parse_techniques(const std::string& list);

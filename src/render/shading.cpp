@@ -11,18 +11,18 @@
 namespace arcus::render {
 namespace {
 
-V3 sky_radiance(const RenderScene& s, V3 d) {
+Vec3 sky_radiance(const RenderScene& s, Vec3 d) {
   const SkyDesc& sky = s.desc.sky;
   switch (sky.kind) {
-    case SkyKind::Constant: return v3(sky.color);
+    case SkyKind::Constant: return sky.color;
     case SkyKind::Gradient: {
       const double t = std::clamp(d.y, 0.0, 1.0);
-      return (1 - t) * v3(sky.horizon) + t * v3(sky.zenith);
+      return (1 - t) * sky.horizon + t * sky.zenith;
     }
     case SkyKind::Image: {
       const auto uv = image::equirect_uv(d.x, d.y, d.z);
       const auto c = image::sample_bilinear(s.sky_image, uv[0], uv[1], true);
-      return sky.intensity * V3{c[0], c[1], c[2]};
+      return sky.intensity * Vec3{c[0], c[1], c[2]};
     }
   }
   return {0, 0, 0};
@@ -57,7 +57,7 @@ TraceOutput shadow_rays(arcus_context_t* ctx, arcus_renderer_s* r, size_t light,
     // Walks that came to the end of a path cut short (its room was full): traced.
     Batch unresolved;
     for (size_t k = 0; k < b.size(); ++k)
-      if (t.status[k] == ARCUS_STATUS_UNRESOLVED) unresolved.add(v3(&b.origins[3 * k]), v3(&b.directions[3 * k]), k, -1);
+      if (t.status[k] == ARCUS_STATUS_UNRESOLVED) unresolved.add(vec3(&b.origins[3 * k]), vec3(&b.directions[3 * k]), k, -1);
     if (unresolved.size()) {
       const TraceOutput u = trace(ctx, r->scene, p, input(unresolved, false));
       for (size_t k = 0; k < unresolved.size(); ++k) t.copy_ray(unresolved.pixels[k], u, k);
@@ -67,7 +67,7 @@ TraceOutput shadow_rays(arcus_context_t* ctx, arcus_renderer_s* r, size_t light,
     if (steps == 0) {  // a probe of every 16th ray
       Batch probe;
       for (size_t k = 0; k < b.size(); k += kCoarse * kCoarse)
-        probe.add(v3(&b.origins[3 * k]), v3(&b.directions[3 * k]), k, -1);
+        probe.add(vec3(&b.origins[3 * k]), vec3(&b.directions[3 * k]), k, -1);
       double seconds = 0;
       steps = probe_steps(ctx, r->scene, p, probe, &seconds);
     }
@@ -89,104 +89,132 @@ TraceOutput shadow_rays(arcus_context_t* ctx, arcus_renderer_s* r, size_t light,
 
 }  // namespace
 
-void shade(arcus_context_t* ctx, arcus_renderer_s* r, const Primary& prim, RenderJob* job) {
-  const RenderScene& s = *r->scene;
+namespace {
+
+// Per pixel: the radiance so far, and at a hit the surface and its albedo.
+struct Shading {
+  std::vector<Vec3> radiance, albedo;
+  std::vector<Surface> surfaces;
+};
+
+// Each pixel's surface and its own light (a hit's emission), or the sky it sees.
+Shading surfaces_and_sky(const RenderScene& s, const Primary& prim) {
   const size_t n = prim.status.size();
-  job->rgb.assign(3 * n, 0.f);
-  std::vector<V3> radiance(n, V3{0, 0, 0}), base(n, V3{0, 0, 0});
-  std::vector<Surface> surfaces(n);
-  const double scale = std::max({s.hi[0] - s.lo[0], s.hi[1] - s.lo[1], s.hi[2] - s.lo[2]});
+  Shading sh;
+  sh.radiance.assign(n, Vec3{0, 0, 0});
+  sh.albedo.assign(n, Vec3{0, 0, 0});
+  sh.surfaces.resize(n);
   for (size_t p = 0; p < n; ++p) {
-    const V3 d = v3(&prim.direction[3 * p]);
+    const Vec3 d = vec3(&prim.direction[3 * p]);
     if (prim.status[p] == ARCUS_STATUS_HIT) {
       const ObjectDesc& o = s.desc.objects[static_cast<size_t>(prim.object[p])];
       const MaterialDesc& m = s.desc.materials[static_cast<size_t>(o.material)];
-      surfaces[p] = surface_at(s, prim.kind[p], prim.index[p], v3(&prim.position[3 * p]), d);
-      base[p] = albedo(s, static_cast<size_t>(o.material), surfaces[p]);
-      radiance[p] = v3(m.emission);
+      sh.surfaces[p] = surface_at(s, prim.kind[p], prim.index[p], vec3(&prim.position[3 * p]), d);
+      sh.albedo[p] = albedo(s, static_cast<size_t>(o.material), sh.surfaces[p]);
+      sh.radiance[p] = m.emission;
     } else if (prim.status[p] == ARCUS_STATUS_LEFT_BOX || prim.status[p] == ARCUS_STATUS_DONE ||
                prim.status[p] == ARCUS_STATUS_STEP_LIMIT) {
-      radiance[p] = sky_radiance(s, d);
+      sh.radiance[p] = sky_radiance(s, d);
     }
   }
-  if (s.desc.photons.count > 0) {
-    // Curved photon mapping (thesis §4.3.4, render/photons.h): the photons' irradiance
-    // replaces the direct light of shadow rays.
-    PhotonStats ps;
-    if (!r->photon_cache) r->photon_cache = std::make_unique<PhotonCache>();
-    PhotonOptions po;
-    po.techniques = r->techniques;  // the renderer's techniques apply to the photons' first generation too
-    po.cache = r->photon_cache.get();
-    const auto map = shoot_photons(ctx, r->scene, r->params, s.desc.photons.count, /*seed=*/1, &ps, po);
-    job->render_stats.photon_seconds = ps.seconds;
-    job->render_stats.photons = ps.stored;
-    std::vector<double> points, normals;
-    std::vector<size_t> hit_pixels;
-    for (size_t p = 0; p < n; ++p) {
-      if (prim.status[p] != ARCUS_STATUS_HIT) continue;
-      points.insert(points.end(), &prim.position[3 * p], &prim.position[3 * p] + 3);
-      normals.insert(normals.end(), {surfaces[p].normal.x, surfaces[p].normal.y, surfaces[p].normal.z});
-      hit_pixels.push_back(p);
-    }
-    const std::vector<double> e = photon_irradiance(ctx, *map, s, points, normals);
-    for (size_t k = 0; k < hit_pixels.size(); ++k) {
-      const size_t p = hit_pixels[k];
-      radiance[p] = radiance[p] + (1 / M_PI) * V3{base[p].x * e[3 * k], base[p].y * e[3 * k + 1],
-                                                  base[p].z * e[3 * k + 2]};
-    }
+  return sh;
+}
+
+// Curved photon mapping (thesis §4.3.4, render/photons.h): the photons' irradiance at
+// every hit, in place of the direct light of shadow rays.
+void add_photon_light(arcus_context_t* ctx, arcus_renderer_s* r, const Primary& prim, Shading* sh, RenderJob* job) {
+  const RenderScene& s = *r->scene;
+  PhotonStats ps;
+  if (!r->photon_cache) r->photon_cache = std::make_unique<PhotonCache>();
+  PhotonOptions po;
+  po.techniques = r->techniques;  // the renderer's techniques apply to the photons' first generation too
+  po.cache = r->photon_cache.get();
+  const auto map = shoot_photons(ctx, r->scene, r->params, s.desc.photons.count, /*seed=*/1, &ps, po);
+  job->render_stats.photon_seconds = ps.seconds;
+  job->render_stats.photons = ps.stored;
+  std::vector<double> points, normals;
+  std::vector<size_t> hit_pixels;
+  for (size_t p = 0; p < prim.status.size(); ++p) {
+    if (prim.status[p] != ARCUS_STATUS_HIT) continue;
+    const Vec3 normal = sh->surfaces[p].normal;
+    points.insert(points.end(), &prim.position[3 * p], &prim.position[3 * p] + 3);
+    normals.insert(normals.end(), {normal.x, normal.y, normal.z});
+    hit_pixels.push_back(p);
   }
-  const size_t lights = s.desc.photons.count > 0 ? 0 : s.desc.lights.size();
-  for (size_t li = 0; li < lights; ++li) {
-    const LightDesc& light = s.desc.lights[li];
-    Batch b;
-    std::vector<double> cosine, falloff;
-    for (size_t p = 0; p < n; ++p) {
-      if (prim.status[p] != ARCUS_STATUS_HIT) continue;
-      const V3 hit = v3(&prim.position[3 * p]), nrm = surfaces[p].normal;
-      V3 to = light.kind == LightKind::Sun ? v3(light.direction) : v3(light.position) - hit;
-      const double dist2 = dot(to, to);
-      to = normalized(to);
-      const double c = dot(nrm, to);
-      if (!(c > 0)) continue;
-      // Off the surface by a little more than the crossing tolerance, so the shadow ray
-      // does not find its own surface again.
-      const double offset = 1e-6 * scale + 1e-4;
-      b.add(hit + offset * nrm, to, p, -1);
-      cosine.push_back(c);
-      falloff.push_back(light.kind == LightKind::Sun ? 1.0 : 1.0 / dist2);
-    }
-    if (b.size() == 0) continue;
-    arcus_advance_params p = r->params;
-    if (light.kind == LightKind::Point) p.length = 0;  // set per ray below: one job per light
-    std::vector<double> reach(b.size(), p.length);
-    if (light.kind == LightKind::Point) {
-      // Every shadow ray of a point light stops at the light's distance: the longest one
-      // sets the job's length, and a hit beyond a ray's own distance does not block it.
-      for (size_t k = 0; k < b.size(); ++k) {
-        const V3 o = v3(&b.origins[3 * k]);
-        reach[k] = std::sqrt(dot(v3(light.position) - o, v3(light.position) - o));
-        p.length = std::max(p.length, reach[k]);
-      }
-    }
-    // Toward a sun any hit blocks: where does not matter.  A point light's blocker must
-    // lie nearer than the light, so its hits are found exactly.
-    const TraceOutput t = shadow_rays(ctx, r, li, p, light.kind == LightKind::Sun, b, &job->render_stats);
-    job->features |= t.features;
-    job->render_stats.shadow_rays += b.size();
+  const std::vector<double> e = photon_irradiance(ctx, *map, s, points, normals);
+  for (size_t k = 0; k < hit_pixels.size(); ++k) {
+    const size_t p = hit_pixels[k];
+    const Vec3 a = sh->albedo[p];
+    sh->radiance[p] = sh->radiance[p] + (1 / M_PI) * Vec3{a.x * e[3 * k], a.y * e[3 * k + 1], a.z * e[3 * k + 2]};
+  }
+}
+
+// Light `li`'s direct light at every hit that faces it, through shadow rays along the
+// curved medium.
+void add_direct_light(arcus_context_t* ctx, arcus_renderer_s* r, const Primary& prim, size_t li, Shading* sh,
+                      RenderJob* job) {
+  const RenderScene& s = *r->scene;
+  const LightDesc& light = s.desc.lights[li];
+  Batch b;
+  std::vector<double> cosine, falloff;
+  for (size_t p = 0; p < prim.status.size(); ++p) {
+    if (prim.status[p] != ARCUS_STATUS_HIT) continue;
+    const Vec3 hit = vec3(&prim.position[3 * p]), nrm = sh->surfaces[p].normal;
+    Vec3 to = light.kind == LightKind::Sun ? light.direction : light.position - hit;
+    const double dist2 = dot(to, to);
+    to = normalized(to);
+    const double c = dot(nrm, to);
+    if (!(c > 0)) continue;
+    b.add(hit + surface_offset(s) * nrm, to, p, -1);
+    cosine.push_back(c);
+    falloff.push_back(light.kind == LightKind::Sun ? 1.0 : 1.0 / dist2);
+  }
+  if (b.size() == 0) return;
+  arcus_advance_params p = r->params;
+  if (light.kind == LightKind::Point) p.length = 0;  // set per ray below: one job per light
+  std::vector<double> reach(b.size(), p.length);
+  if (light.kind == LightKind::Point) {
+    // Every shadow ray of a point light stops at the light's distance: the longest one
+    // sets the job's length, and a hit beyond a ray's own distance does not block it.
     for (size_t k = 0; k < b.size(); ++k) {
-      const bool blocked = t.status[k] == ARCUS_STATUS_HIT && t.lengths[k] < reach[k];
-      const bool failed = t.status[k] == ARCUS_STATUS_FAILED || t.status[k] == ARCUS_STATUS_INVALID_INPUT;
-      if (blocked || failed) continue;
-      const size_t px = b.pixels[k];
-      const double w = cosine[k] * falloff[k] / M_PI;
-      radiance[px] = radiance[px] + V3{w * base[px].x * light.power[0], w * base[px].y * light.power[1],
-                                       w * base[px].z * light.power[2]};
+      const Vec3 o = vec3(&b.origins[3 * k]);
+      reach[k] = length(light.position - o);
+      p.length = std::max(p.length, reach[k]);
     }
   }
+  // Toward a sun any hit blocks: where does not matter.  A point light's blocker must
+  // lie nearer than the light, so its hits are found exactly.
+  const TraceOutput t = shadow_rays(ctx, r, li, p, light.kind == LightKind::Sun, b, &job->render_stats);
+  job->features |= t.features;
+  job->render_stats.shadow_rays += b.size();
+  for (size_t k = 0; k < b.size(); ++k) {
+    const bool blocked = t.status[k] == ARCUS_STATUS_HIT && t.lengths[k] < reach[k];
+    const bool failed = t.status[k] == ARCUS_STATUS_FAILED || t.status[k] == ARCUS_STATUS_INVALID_INPUT;
+    if (blocked || failed) continue;
+    const size_t px = b.pixels[k];
+    const double w = cosine[k] * falloff[k] / M_PI;
+    const Vec3 a = sh->albedo[px];
+    sh->radiance[px] =
+        sh->radiance[px] + Vec3{w * a.x * light.power[0], w * a.y * light.power[1], w * a.z * light.power[2]};
+  }
+}
+
+}  // namespace
+
+void shade(arcus_context_t* ctx, arcus_renderer_s* r, const Primary& prim, RenderJob* job) {
+  const RenderScene& s = *r->scene;
+  Shading sh = surfaces_and_sky(s, prim);
+  if (s.desc.photons.count > 0) {
+    add_photon_light(ctx, r, prim, &sh, job);
+  } else {
+    for (size_t li = 0; li < s.desc.lights.size(); ++li) add_direct_light(ctx, r, prim, li, &sh, job);
+  }
+  const size_t n = prim.status.size();
+  job->rgb.assign(3 * n, 0.f);
   for (size_t p = 0; p < n; ++p) {
-    job->rgb[3 * p] = static_cast<float>(radiance[p].x);
-    job->rgb[3 * p + 1] = static_cast<float>(radiance[p].y);
-    job->rgb[3 * p + 2] = static_cast<float>(radiance[p].z);
+    job->rgb[3 * p] = static_cast<float>(sh.radiance[p].x);
+    job->rgb[3 * p + 1] = static_cast<float>(sh.radiance[p].y);
+    job->rgb[3 * p + 2] = static_cast<float>(sh.radiance[p].z);
   }
 }
 
@@ -224,8 +252,8 @@ double spectral_radiance(const RenderScene& s, const Frame& f, const Primary& pr
       const bool atmosphere = s.field->desc.kind == ARCUS_KIND_ATMOSPHERE;
       if (atmosphere && prim.length[p] > 1e5) {
         // The apparent elevation: the primary ray's start against the local horizontal.
-        const V3 up = s.field->desc.spherical ? normalized(f.origin) : V3{0, 1, 0};
-        const V3 d = normalized(v3(&prim.start[3 * p]));
+        const Vec3 up = s.field->desc.spherical ? normalized(f.origin) : Vec3{0, 1, 0};
+        const Vec3 d = normalized(vec3(&prim.start[3 * p]));
         const double h = std::asin(std::clamp(dot(d, up), -1.0, 1.0)) * 180 / M_PI;
         L *= std::exp(-rayleigh_depth(nm, s.desc.medium.atmosphere.sea_level_pressure) * air_mass(h));
       }

@@ -5,17 +5,17 @@
 
 namespace arcus::render {
 
-Surface surface_at(const RenderScene& s, int32_t kind, int32_t index, V3 p, V3 arriving) {
+Surface surface_at(const RenderScene& s, int32_t kind, int32_t index, Vec3 p, Vec3 arriving) {
   Surface out;
   if (kind == ARCUS_HIT_TRIANGLE) {
     const double* t = &s.triangles.triangles[9 * static_cast<size_t>(s.slot_of[static_cast<size_t>(index)])];
-    const V3 a = v3(t), e1 = v3(t + 3) - a, e2 = v3(t + 6) - a;
+    const Vec3 a = vec3(t), e1 = vec3(t + 3) - a, e2 = vec3(t + 6) - a;
     out.normal = normalized(cross(e1, e2));
     const uint32_t mesh = s.triangles.geometry[static_cast<size_t>(index)];
     const auto& uvs = s.mesh_uvs[mesh];
     if (!uvs.empty()) {
       // Barycentric weights of p (projected onto the triangle's plane).
-      const V3 w = p - a;
+      const Vec3 w = p - a;
       const double d00 = dot(e1, e1), d01 = dot(e1, e2), d11 = dot(e2, e2), d20 = dot(w, e1), d21 = dot(w, e2);
       const double den = d00 * d11 - d01 * d01;
       const double b1 = (d11 * d20 - d01 * d21) / den, b2 = (d00 * d21 - d01 * d20) / den, b0 = 1 - b1 - b2;
@@ -27,17 +27,17 @@ Surface surface_at(const RenderScene& s, int32_t kind, int32_t index, V3 p, V3 a
     }
   } else {
     const arcus_shape_d& sh = s.shapes[static_cast<size_t>(index)];
-    const V3 c = v3(sh.center);
+    const Vec3 c = vec3(sh.center);
     if (sh.kind == ARCUS_SHAPE_SPHERE) {
       out.normal = normalized(p - c);
       out.u = 0.5 + std::atan2(out.normal.x, -out.normal.z) / (2 * M_PI);
       out.v = std::acos(std::clamp(out.normal.y, -1.0, 1.0)) / M_PI;
     } else {
-      out.normal = v3(sh.normal);
+      out.normal = vec3(sh.normal);
       // Planar coordinates in metres along two axes of the disc's plane.
-      const V3 n = out.normal;
-      const V3 t = normalized(std::fabs(n.y) < 0.9 ? cross(n, V3{0, 1, 0}) : cross(n, V3{1, 0, 0}));
-      const V3 b = cross(n, t);
+      const Vec3 n = out.normal;
+      const Vec3 t = normalized(std::fabs(n.y) < 0.9 ? cross(n, Vec3{0, 1, 0}) : cross(n, Vec3{1, 0, 0}));
+      const Vec3 b = cross(n, t);
       out.u = dot(p - c, t);
       out.v = dot(p - c, b);
     }
@@ -47,9 +47,9 @@ Surface surface_at(const RenderScene& s, int32_t kind, int32_t index, V3 p, V3 a
   return out;
 }
 
-V3 albedo(const RenderScene& s, size_t material, const Surface& surf) {
+Vec3 albedo(const RenderScene& s, size_t material, const Surface& surf) {
   const MaterialDesc& m = s.desc.materials[material];
-  V3 a = v3(m.diffuse);
+  Vec3 a = m.diffuse;
   const image::Image& tex = s.textures[material];
   if (tex.width > 0 && surf.has_uv) {
     const double u = surf.u * m.uv_scale[0], v = surf.v * m.uv_scale[1];

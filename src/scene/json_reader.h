@@ -18,10 +18,11 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/vec3.h"
+
 namespace arcus::json {
 
 using Json = nlohmann::ordered_json;  // ordered: the document keeps the author's key order
-using Vec3 = std::array<double, 3>;
 
 // Containers nested deeper than this are refused while parsing (nlohmann copies a DOM
 // recursively, so a deep document would otherwise overflow the stack).

@@ -9,11 +9,13 @@
 #include "core/error.h"
 #include "scene/json_reader.h"
 
-using arcus::HandleType;
 using arcus::require_pointer;
 using namespace arcus::api;
 
 namespace arcus::scene {
+
+const HandleKind kSceneHandle("scene");
+
 namespace {
 
 struct Registered {
@@ -79,7 +81,7 @@ namespace {
 
 template <class Body>
 arcus_status on_scene(arcus_scene_t* scene, Body&& body) {
-  return simple<arcus_scene_s>(scene, HandleType::Scene, "scene", body);
+  return simple<arcus_scene_s>(scene, arcus::scene::kSceneHandle, "scene", body);
 }
 
 // A string of the scene, valid while it lives.
@@ -99,7 +101,7 @@ arcus_status arcus_scene_load(arcus_context_t* ctx, const char* path, arcus_scen
   // Reading and checking the file happen before the context's lock is taken; the loader
   // takes it only to create objects.  Errors of either part are reported under the lock.
   arcus_status status;
-  const arcus::HandleRef held = hold(ctx, HandleType::Context, "ctx", &status);  // alive while unlocked
+  const arcus::HandleRef held = hold(ctx, arcus::kContextHandle, "ctx", &status);  // alive while unlocked
   if (!held) return status;
   arcus_scene_s* scene = nullptr;
   std::exception_ptr failed;
@@ -113,7 +115,7 @@ arcus_status arcus_scene_load(arcus_context_t* ctx, const char* path, arcus_scen
       failed = std::current_exception();
     }
   }
-  return simple<arcus_context_s>(ctx, HandleType::Context, "ctx", [&](arcus_context_s*) {
+  return simple<arcus_context_s>(ctx, arcus::kContextHandle, "ctx", [&](arcus_context_s*) {
     require_pointer(out, "out");
     *out = nullptr;
     require_pointer(path, "path");
@@ -122,9 +124,9 @@ arcus_status arcus_scene_load(arcus_context_t* ctx, const char* path, arcus_scen
   });
 }
 
-arcus_status arcus_scene_retain(arcus_scene_t* scene) { return retain(scene, HandleType::Scene, "scene"); }
+arcus_status arcus_scene_retain(arcus_scene_t* scene) { return retain(scene, arcus::scene::kSceneHandle, "scene"); }
 
-arcus_status arcus_scene_release(arcus_scene_t* scene) { return release(scene, HandleType::Scene, "scene"); }
+arcus_status arcus_scene_release(arcus_scene_t* scene) { return release(scene, arcus::scene::kSceneHandle, "scene"); }
 
 arcus_status arcus_scene_get_name(arcus_scene_t* scene, const char** name) {
   return get_string(scene, name, "name", &arcus_scene_s::name);

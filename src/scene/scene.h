@@ -10,8 +10,12 @@
 #include "core/handle.h"
 #include "scene/json_reader.h"
 
+namespace arcus::scene {
+extern const HandleKind kSceneHandle;  // "scene"
+}  // namespace arcus::scene
+
 struct arcus_scene_s : arcus::Handle {
-  arcus_scene_s(arcus_context_t* ctx, const char* engine) : Handle(arcus::HandleType::Scene, ctx), engine(engine) {}
+  arcus_scene_s(arcus_context_t* ctx, const char* engine) : Handle(arcus::scene::kSceneHandle, ctx), engine(engine) {}
   const char* engine;  // "curved", ...
   std::string name, description, document;
 };

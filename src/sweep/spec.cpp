@@ -4,7 +4,7 @@
 #include <string>
 
 #include "core/format.h"
-#include "curved/scene_desc.h"  // parse_name
+#include "scene/common_keys.h"  // parse_name
 #include "scene/scene.h"
 
 namespace arcus::sweep {
@@ -91,7 +91,7 @@ void check_spec(const Node& root) {
       }
       break;
   }
-  if (auto v = root.find("name")) curved::parse_name(*v);
+  if (auto v = root.find("name")) scene::parse_name(*v);
   if (auto v = root.find("description")) v->string();
 }
 

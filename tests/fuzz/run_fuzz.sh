@@ -42,7 +42,8 @@ for target in "${targets[@]}"; do
   # The library's sources the target needs (beside the file reader every one uses), and
   # what it links.
   case $target in
-    scene) sources=(src/scene/json_reader.cpp src/curved/scene_desc.cpp src/curved/params.cpp) libs=() ;;
+    scene) sources=(src/scene/json_reader.cpp src/scene/common_keys.cpp src/curved/scene_desc.cpp src/curved/params.cpp)
+           libs=() ;;
     image) sources=(src/image/image_io.cpp src/spectral/srgb.cpp src/spectral/cie.cpp)
            read -r -a libs <<< "$(pkg-config --libs OpenImageIO)" ;;
     mesh) sources=(src/geometry/mesh.cpp src/geometry/mesh_scan.cpp) libs=(-lOpenMeshCore) ;;

@@ -1,0 +1,75 @@
+#include "scene/common_keys.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+#include "core/error.h"
+#include "core/format.h"
+
+namespace arcus::scene {
+
+std::string parse_name(const json::Node& node) {
+  const std::string name = node.string();
+  const bool plain = !name.empty() && name != "." && name != ".." && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+  });
+  if (!plain) node.fail("use letters, digits, '_', '-' and '.' only (it names the output directory)");
+  return name;
+}
+
+Vec3 parse_direction(const json::Node& node) {
+  const Vec3 v = node.vec3();
+  const double len = std::hypot(v.x, v.y, v.z);
+  if (!(len > 0) || !std::isfinite(len)) node.fail("expected a non-zero direction");
+  return {v.x / len, v.y / len, v.z / len};
+}
+
+void check_camera(const CameraDesc& c, const std::string& what) {
+  for (int a = 0; a < 3; ++a)
+    require(std::isfinite(c.position[a]) && std::isfinite(c.look_at[a]) && std::isfinite(c.up[a]),
+            what + ": position, look_at and up must be finite");
+  const Vec3 forward = c.look_at - c.position;
+  require(length(forward) > 0, what + ": look_at must differ from position");
+  require(length(cross(forward, c.up)) > 1e-9 * length(forward) * length(c.up),
+          what + ": up must not be zero or along the view direction");
+  require(std::isfinite(c.vfov_deg) && c.vfov_deg > 0 && c.vfov_deg < 180,
+          what + ": vfov_deg = " + number(c.vfov_deg) + " must lie strictly between 0 and 180");
+  require(c.width >= 1 && c.height >= 1 && c.width <= kMaxSide && c.height <= kMaxSide,
+          what + ": width and height must be 1.." + std::to_string(kMaxSide) + " pixels");
+}
+
+CameraDesc camera_desc(const arcus_camera& c) {
+  return {vec3(c.position), vec3(c.look_at), vec3(c.up), c.vfov_deg, c.width, c.height};
+}
+
+arcus_camera camera_struct(const CameraDesc& d) {
+  arcus_camera c{};
+  store(d.position, c.position);
+  store(d.look_at, c.look_at);
+  store(d.up, c.up);
+  c.vfov_deg = d.vfov_deg;
+  c.width = d.width;
+  c.height = d.height;
+  return c;
+}
+
+CameraDesc parse_camera(const json::Node& n, Vec3 default_up) {
+  n.expect_object({"position", "look_at", "up", "vfov_deg", "width", "height"});
+  CameraDesc d;
+  d.position = n.member("position").vec3();
+  d.look_at = n.member("look_at").vec3();
+  d.up = default_up;
+  if (auto v = n.find("up")) d.up = v->vec3();
+  d.vfov_deg = n.member("vfov_deg").number();
+  d.width = static_cast<uint32_t>(n.member("width").integer(kMaxSide));
+  d.height = static_cast<uint32_t>(n.member("height").integer(kMaxSide));
+  try {
+    check_camera(d, "camera");
+  } catch (const Error& e) {
+    n.fail(e.what());
+  }
+  return d;
+}
+
+}  // namespace arcus::scene
