@@ -389,7 +389,7 @@ TEST_F(Api, SecondIdenticalJobHitsTheProgramCache) {
 
 TEST_F(Api, DeterminismTheSameJobTwiceGivesTheSameNumbers) {
   // Determinism only: the same program on the same input repeats itself bit for bit.
-  // The numbers themselves are checked against the catenary in test_closed_forms.cpp
+  // The numbers themselves are checked against the catenary in test_curved_closed_forms.cpp
   // and here (dp45_bound).
   const TwoRuns runs = same_job_twice();
   ASSERT_TRUE(runs.field);
@@ -510,7 +510,7 @@ TEST_F(Api, StopConditionsSetTheRayStatus) {
 }
 
 TEST_F(Api, FloatPrecisionFollowsTheDoubleResult) {
-  // RK4, h = 0.1 over 10 m: truncation ≈ 1e-8 m here (h⁴·∫κ⁴ds, test_hard_cases.cpp),
+  // RK4, h = 0.1 over 10 m: truncation ≈ 1e-8 m here (h⁴·∫κ⁴ds, test_curved_hard_cases.cpp),
   // so double must match the closed form to 1e-6; float adds its rounding
   // (float_rounding_bound, test_util.h).
   const double n0 = 1.0, L = 10.0;
@@ -563,7 +563,7 @@ TEST_F(Api, DeterminismARayInABatchEqualsTheRayTracedAlone) {
   }
   for (size_t i = 0; i < batch.size(); ++i) {
     // Every ray of the batch is on its circle (fisheye_end; the bound as in
-    // test_closed_forms.cpp: the arc curves on the smaller of its radius and R).
+    // test_curved_closed_forms.cpp: the arc curves on the smaller of its radius and R).
     const RayState want = fisheye_end({0, 0, 0}, R, batch.origin(i), batch.direction(i), L);
     const Circle k = fisheye_circle({0, 0, 0}, R, batch.origin(i), batch.direction(i));
     const double far = norm(k.centre) + k.radius;
@@ -651,6 +651,31 @@ TEST(CApiDump, PrintsEightRaysOnTheCatenary) {
     EXPECT_LT(distance(p, want.pos), dp45_bound(1e-9, 1e-12, scale)) << "ray " << i << " (" << steps << " steps)";
     EXPECT_LT(angle_between(d, want.dir), dp45_direction_bound(1e-9, 1e-12, scale, 9.7)) << "ray " << i;
   }
+}
+
+// The default path capacity follows the steps actually taken: max_steps bounds it, and
+// the float step count is the kernel's own.
+TEST_F(Api, DefaultPathCapacityFollowsTheStepsTaken) {
+  FieldPtr medium = linear(1.0, {0, 0.1, 0});
+  ASSERT_TRUE(medium);
+  Rays rays;
+  rays.add({0, 0, 0}, {1, 0, 0});
+  arcus_advance_params p = fixed(ARCUS_METHOD_RK4, 1e-4, 1e4);  // 10⁸ steps, but…
+  p.max_steps = 10;                                              // …only 10 taken
+  p.record_path = 1;
+  Trace t = trace(ctx(), medium.get(), p, rays);
+  ASSERT_EQ(t.status, ARCUS_SUCCESS) << last_error();
+  EXPECT_EQ(t.ray_status[0], ARCUS_RAY_STEP_LIMIT);
+  size_t points = 0;
+  ASSERT_EQ(arcus_job_get_path_size(t.job.get(), &points), ARCUS_SUCCESS);
+  EXPECT_EQ(points, 11u);
+
+  // A length and step whose step count differs between float and double arithmetic.
+  arcus_advance_params q = fixed(ARCUS_METHOD_EULER, 7.210077602228678e-03, 196.71196784464513);
+  q.precision = ARCUS_PRECISION_FLOAT;
+  q.record_path = 1;
+  t = trace(ctx(), medium.get(), q, rays);
+  EXPECT_EQ(t.status, ARCUS_SUCCESS) << last_error();
 }
 
 }  // namespace

@@ -5,30 +5,14 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <fstream>
 
 using namespace arcus_test;
 
 namespace {
 
-class BadInput : public ArcusTest {
- protected:
-  // Expects `st` to be INVALID_ARGUMENT with a context message naming `argument`.
-  // A null `argument` (a one-letter name like n or k, which any message contains) only
-  // requires a message.
-  void expect_invalid(arcus_status st, const char* argument, const char* what) {
-    EXPECT_EQ(st, ARCUS_ERROR_INVALID_ARGUMENT) << what;
-    const std::string msg = arcus_context_last_error(ctx());
-    EXPECT_FALSE(msg.empty()) << what;
-    if (argument) {
-      EXPECT_TRUE(contains_ci(msg.c_str(), argument))
-          << what << ": message \"" << msg << "\" does not name " << argument;
-    }
-  }
-  static std::string temp_path(const char* tag) {
-    return ::testing::TempDir() + "arcus_test_" + tag + "_" + std::to_string(getpid()) + ".raw";
-  }
-};
+class BadInput : public ArcusTest {};
 
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 const double kInf = std::numeric_limits<double>::infinity();
@@ -88,7 +72,7 @@ TEST_F(BadInput, DeterminismInvalidRaysAreFlaggedAndTheOthersAreBitwiseUnchanged
       PathScale scale{norm(want.pos), 5.0};
       scale.turning = angle_between(d, want.dir);
       scale.n_min = A;
-      // RK4 at h = 0.01 errs by ≲ h⁴·∫κ⁴ds ≤ h⁴·κ_max³·turning (test_hard_cases.cpp,
+      // RK4 at h = 0.01 errs by ≲ h⁴·∫κ⁴ds ≤ h⁴·κ_max³·turning (test_curved_hard_cases.cpp,
       // SteepLinearGradientHundredPerMetre), plus 500 steps' rounding.
       const double kappa = norm(G) / A;
       const double bound = m == ARCUS_METHOD_DP45 ? dp45_bound(1e-10, 1e-13, scale)
@@ -309,77 +293,6 @@ TEST_F(BadInput, EveryContextFunctionRejectsNullArguments) {
   EXPECT_EQ(arcus_job_get_stats(t.job.get(), nullptr), ARCUS_ERROR_INVALID_ARGUMENT);
 }
 
-TEST_F(BadInput, BadGridsAreRejected) {
-  const double origin[3] = {0, 0, 0}, spacing[3] = {1, 1, 1};
-  arcus_field_t* f = nullptr;
-  std::vector<double> values(2 * 3 * 4, 1.0);
-  const uint32_t dims[3] = {2, 3, 4};
-  values[7] = kNaN;
-  expect_invalid(arcus_field_create_grid(ctx(), values.data(), dims, origin, spacing, &f), "values", "NaN value");
-  values[7] = kInf;
-  expect_invalid(arcus_field_create_grid(ctx(), values.data(), dims, origin, spacing, &f), "values", "Inf value");
-  // n must be positive.
-  values[7] = 0.0;
-  expect_invalid(arcus_field_create_grid(ctx(), values.data(), dims, origin, spacing, &f), "values", "zero value");
-  values[7] = -1.0;
-  expect_invalid(arcus_field_create_grid(ctx(), values.data(), dims, origin, spacing, &f), "values", "negative value");
-  values[7] = 1.0;
-  for (int axis = 0; axis < 3; ++axis) {
-    // Each of dims must be 2..65536 (trilinear needs two nodes per axis).
-    uint32_t zero[3] = {2, 3, 4};
-    zero[axis] = 0;
-    expect_invalid(arcus_field_create_grid(ctx(), values.data(), zero, origin, spacing, &f), "dims", "zero dimension");
-    zero[axis] = 1;
-    expect_invalid(arcus_field_create_grid(ctx(), values.data(), zero, origin, spacing, &f), "dims", "dimension 1");
-    double bad_spacing[3] = {1, 1, 1};
-    bad_spacing[axis] = 0.0;
-    expect_invalid(arcus_field_create_grid(ctx(), values.data(), dims, origin, bad_spacing, &f), "spacing",
-                   "zero spacing");
-    bad_spacing[axis] = -1.0;
-    expect_invalid(arcus_field_create_grid(ctx(), values.data(), dims, origin, bad_spacing, &f), "spacing",
-                   "negative spacing");
-  }
-  EXPECT_EQ(f, nullptr);
-}
-
-TEST_F(BadInput, GridFilesOfTheWrongSizeOrMissingAreRejected) {
-  const double origin[3] = {0, 0, 0}, spacing[3] = {1, 1, 1};
-  const uint32_t dims[3] = {3, 3, 3};
-  const std::string path = temp_path("wrong_size");
-  {
-    // 26 doubles for a 27-voxel grid.
-    std::ofstream out(path, std::ios::binary);
-    const std::vector<double> v(26, 1.0);
-    out.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(double)));
-  }
-  arcus_field_t* f = nullptr;
-  // arcus_curved.h: "a file of the wrong size, is ARCUS_ERROR_IO".
-  arcus_status st = arcus_field_create_grid_from_file(ctx(), path.c_str(), ARCUS_FLOAT64, dims, origin, spacing, &f);
-  EXPECT_EQ(st, ARCUS_ERROR_IO) << arcus_status_string(st);
-  EXPECT_EQ(f, nullptr);
-  EXPECT_GT(std::strlen(arcus_context_last_error(ctx())), 0u);
-  // 27 doubles are 54 floats: also the wrong size for a float32 file of 27 values.
-  {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    const std::vector<double> v(27, 1.0);
-    out.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(double)));
-  }
-  st = arcus_field_create_grid_from_file(ctx(), path.c_str(), ARCUS_FLOAT32, dims, origin, spacing, &f);
-  EXPECT_EQ(st, ARCUS_ERROR_IO) << arcus_status_string(st);
-  EXPECT_EQ(f, nullptr);
-  // ... and the right size for float64.
-  st = arcus_field_create_grid_from_file(ctx(), path.c_str(), ARCUS_FLOAT64, dims, origin, spacing, &f);
-  EXPECT_EQ(st, ARCUS_SUCCESS) << last_error();
-  if (f) arcus_field_release(f);
-  std::remove(path.c_str());
-  // A file that does not exist.
-  f = nullptr;
-  st = arcus_field_create_grid_from_file(ctx(), path.c_str(), ARCUS_FLOAT64, dims, origin, spacing, &f);
-  EXPECT_EQ(st, ARCUS_ERROR_IO);
-  EXPECT_EQ(f, nullptr);
-  EXPECT_GT(std::strlen(arcus_context_last_error(ctx())), 0u);
-}
-
 TEST_F(BadInput, PathOverflowKeepsTheJobAndReportsWhatWasNeeded) {
   auto field = linear(1.0, {0, 0.5, 0});
   ASSERT_TRUE(field);
@@ -468,6 +381,60 @@ TEST_F(BadInput, LastErrorIsPerContext) {
   // The suite's context still holds its own error, not the other context's.
   EXPECT_TRUE(contains_ci(arcus_context_last_error(ctx()), "radius")) << arcus_context_last_error(ctx());
   EXPECT_FALSE(contains_ci(arcus_context_last_error(ctx()), "n0")) << arcus_context_last_error(ctx());
+}
+
+// The error callback runs after the context's lock is released, so it may call arcus.
+TEST_F(BadInput, ErrorCallbackMayCallTheLibrary) {
+  struct Seen {
+    arcus_context_t* ctx;
+    std::atomic<int> calls{0};
+    arcus_status device_status = ARCUS_ERROR_INVALID_ARGUMENT;
+  } seen{ctx()};
+  auto callback = [](void* user, arcus_status, const char*) {
+    auto* s = static_cast<Seen*>(user);
+    arcus_device_info info;
+    s->device_status = arcus_context_get_device(s->ctx, &info);
+    s->calls++;
+  };
+  ASSERT_EQ(arcus_context_set_error_callback(ctx(), callback, &seen), ARCUS_SUCCESS);
+  EXPECT_EQ(arcus_context_get_device(ctx(), nullptr), ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(arcus_context_set_error_callback(ctx(), nullptr, nullptr), ARCUS_SUCCESS);
+  EXPECT_EQ(seen.calls.load(), 1);
+  EXPECT_EQ(seen.device_status, ARCUS_SUCCESS);
+}
+
+// In float, a direction that is zero after conversion is invalid, and the call says so.
+TEST_F(BadInput, DirectionThatVanishesInFloatIsReportedAsInvalid) {
+  FieldPtr medium = linear(1.0, {0, 0.1, 0});
+  ASSERT_TRUE(medium);
+  Rays rays;
+  rays.add({0, 0, 0}, {1e-50, 0, 0});
+  rays.add({0, 0, 0}, {1, 0, 0});
+  arcus_advance_params p = fixed(ARCUS_METHOD_RK4, 0.1, 1.0);
+  p.precision = ARCUS_PRECISION_FLOAT;
+  Trace t = trace(ctx(), medium.get(), p, rays);
+  EXPECT_EQ(t.status, ARCUS_ERROR_INVALID_RAYS);
+  EXPECT_EQ(t.ray_status[0], ARCUS_RAY_INVALID_INPUT);
+  EXPECT_EQ(t.ray_status[1], ARCUS_RAY_DONE);
+  EXPECT_TRUE(contains_ci(arcus_context_last_error(ctx()), "float")) << last_error();
+}
+
+// Parameters that do not survive conversion to float are rejected, not run as 0 or inf.
+TEST_F(BadInput, ParametersOutsideFloatRangeAreRejected) {
+  FieldPtr medium = linear(1.0, {0, 0.1, 0});
+  ASSERT_TRUE(medium);
+  Rays rays;
+  rays.add({0, 0, 0}, {1, 0, 0});
+  arcus_advance_params p = fixed(ARCUS_METHOD_RK4, 1e-50, 1.0);
+  p.precision = ARCUS_PRECISION_FLOAT;
+  Trace t = trace(ctx(), medium.get(), p, rays);
+  EXPECT_EQ(t.status, ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_TRUE(contains_ci(arcus_context_last_error(ctx()), "params.step")) << last_error();
+  arcus_advance_params q = dp45(1.0, 1e-6, 1e-9);
+  q.min_step = 2.0;  // more than the length
+  t = trace(ctx(), medium.get(), q, rays);
+  EXPECT_EQ(t.status, ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_TRUE(contains_ci(arcus_context_last_error(ctx()), "min_step")) << last_error();
 }
 
 }  // namespace

@@ -122,7 +122,7 @@ TEST(Contexts, TwoContextsDrivenFromTwoThreadsAtOnceGiveTheirSerialResults) {
   for (int k = 0; k < 2; ++k) {
     ASSERT_EQ(parallel[k].status, ARCUS_SUCCESS);
     EXPECT_EQ(parallel[k].positions, serial[k].positions) << "context " << k;
-    // The catenary within the tolerance (rtol 1e-10 over 50 m: see test_closed_forms).
+    // The catenary within the tolerance (rtol 1e-10 over 50 m: see test_curved_closed_forms).
     const V3 end{parallel[k].positions[0], parallel[k].positions[1], parallel[k].positions[2]};
     EXPECT_LT(distance(end, catenary_end(1.0, {0, parallel[k].gradient, 0}, {0, 0, 0}, {1, 0, 0}, 50.0).pos), 1e-7);
   }

@@ -68,7 +68,7 @@ TEST_F(Scenes, TheLuneburgSceneLoadsAndFocusesItsRays) {
   ASSERT_EQ(arcus_scene_get_advance_params(scene.get(), &p), ARCUS_SUCCESS);
   EXPECT_EQ(p.progress, nullptr);
   // Determinism: the scene's job is arcus_advance with the scene's rays and settings.
-  // (The lens' physics is checked against its closed form in test_closed_forms.)
+  // (The lens' physics is checked against its closed form in test_curved_closed_forms.)
   arcus_job_t* job = nullptr;
   ASSERT_EQ(arcus_scene_advance(scene.get(), nullptr, nullptr, &job), ARCUS_SUCCESS) << last_error();
   JobPtr job_guard(job);

@@ -6,6 +6,7 @@
 
 #include <arcus/arcus.h>
 #include <gtest/gtest.h>
+#include <unistd.h>  // getpid
 
 #include <algorithm>
 #include <array>
@@ -91,6 +92,22 @@ class ArcusTest : public ::testing::Test {
   void SetUp() override { ASSERT_NE(ctx_, nullptr) << "no arcus context: " << arcus_last_error(); }
   static arcus_context_t* ctx() { return ctx_; }
   static std::string last_error() { return ctx_ ? arcus_context_last_error(ctx_) : arcus_last_error(); }
+  // Expects `st` to be INVALID_ARGUMENT with a context message naming `argument`.
+  // A null `argument` (a one-letter name like n or k, which any message contains) only
+  // requires a message.
+  static void expect_invalid(arcus_status st, const char* argument, const char* what) {
+    EXPECT_EQ(st, ARCUS_ERROR_INVALID_ARGUMENT) << what;
+    const std::string msg = arcus_context_last_error(ctx_);
+    EXPECT_FALSE(msg.empty()) << what;
+    if (argument) {
+      EXPECT_TRUE(contains_ci(msg.c_str(), argument))
+          << what << ": message \"" << msg << "\" does not name " << argument;
+    }
+  }
+  // A file name of this process's own in the test's temporary directory.
+  static std::string temp_path(const char* tag) {
+    return ::testing::TempDir() + "arcus_test_" + tag + "_" + std::to_string(getpid()) + ".raw";
+  }
 
   // Field factories: a failure is reported (with the library's message) and gives null.
   // (f is read through a pointer: argument evaluation order is unspecified.)
@@ -240,7 +257,7 @@ inline Trace trace(arcus_context_t* ctx, arcus_field_t* field, const arcus_advan
 // own scale) however many there are: the error is proportional to the tolerance (Hairer,
 // Nørsett & Wanner I, §II.4).  kDp45Safety: error / ((1 + turning)·tol) stayed below 1.6
 // for rtol 1e-5..1e-12 on every smooth closed form of these suites, below 1 for rtol ≤
-// 1e-7 (the worst: the fish-eye arcs of test_orders.cpp; catenaries stay below 0.03).
+// 1e-7 (the worst: the fish-eye arcs of test_curved_orders.cpp; catenaries stay below 0.03).
 //
 // Where ∇n jumps (a lens surface, an atmosphere's layer boundary, a grid's face) the
 // estimate and the kept solution weigh the stages on either side of the jump

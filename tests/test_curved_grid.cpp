@@ -1,13 +1,19 @@
 // Voxel-grid fields: trilinear values and gradients against a host reference, the
 // clamped exterior (face values extend outwards, zero gradient across the face), files in
-// both scalar types, and rays that start outside the grid.
+// both scalar types, rays that start outside the grid, and bad grids and grid files
+// (bad values and shapes, files of the wrong size, missing, or not regular files).
 #include "scoped_env.h"
 #include "test_util.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <future>
+#include <limits>
 #include <random>
 
 using namespace arcus_test;
@@ -64,10 +70,10 @@ class Grid : public ArcusTest {
     return s;
   }
   FieldPtr make(const Spec& s) { return grid(s.values, s.dims, s.origin, s.spacing); }
-  static std::string temp_path(const char* tag) {
-    return ::testing::TempDir() + "arcus_grid_" + tag + "_" + std::to_string(getpid()) + ".raw";
-  }
 };
+
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+const double kInf = std::numeric_limits<double>::infinity();
 
 TEST_F(Grid, TrilinearValuesAndGradientsMatchAHostReference) {
   const Spec s = random_spec(7);
@@ -308,6 +314,119 @@ TEST_F(Grid, RayThroughTheGridInFloatPrecisionFollowsTheClosedForm) {
   const RayState bent = Ramp::end(rays.origin(1), rays.direction(1), L, &scale);
   EXPECT_GT(distance(bent.pos, rays.origin(1) + L * normalize(rays.direction(1))),
             10.0 * (dp45_bound(rtol, atol, scale) + float_rounding_bound(scale)));
+}
+
+// ---- bad grids and grid files ----------------------------------------------------------
+
+TEST_F(Grid, BadGridsAreRejected) {
+  const double origin[3] = {0, 0, 0}, spacing[3] = {1, 1, 1};
+  arcus_field_t* f = nullptr;
+  std::vector<double> values(2 * 3 * 4, 1.0);
+  const uint32_t dims[3] = {2, 3, 4};
+  values[7] = kNaN;
+  expect_invalid(arcus_field_create_grid(ctx(), values.data(), dims, origin, spacing, &f), "values", "NaN value");
+  values[7] = kInf;
+  expect_invalid(arcus_field_create_grid(ctx(), values.data(), dims, origin, spacing, &f), "values", "Inf value");
+  // n must be positive.
+  values[7] = 0.0;
+  expect_invalid(arcus_field_create_grid(ctx(), values.data(), dims, origin, spacing, &f), "values", "zero value");
+  values[7] = -1.0;
+  expect_invalid(arcus_field_create_grid(ctx(), values.data(), dims, origin, spacing, &f), "values", "negative value");
+  values[7] = 1.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    // Each of dims must be 2..65536 (trilinear needs two nodes per axis).
+    uint32_t zero[3] = {2, 3, 4};
+    zero[axis] = 0;
+    expect_invalid(arcus_field_create_grid(ctx(), values.data(), zero, origin, spacing, &f), "dims", "zero dimension");
+    zero[axis] = 1;
+    expect_invalid(arcus_field_create_grid(ctx(), values.data(), zero, origin, spacing, &f), "dims", "dimension 1");
+    double bad_spacing[3] = {1, 1, 1};
+    bad_spacing[axis] = 0.0;
+    expect_invalid(arcus_field_create_grid(ctx(), values.data(), dims, origin, bad_spacing, &f), "spacing",
+                   "zero spacing");
+    bad_spacing[axis] = -1.0;
+    expect_invalid(arcus_field_create_grid(ctx(), values.data(), dims, origin, bad_spacing, &f), "spacing",
+                   "negative spacing");
+  }
+  EXPECT_EQ(f, nullptr);
+}
+
+TEST_F(Grid, GridFilesOfTheWrongSizeOrMissingAreRejected) {
+  const double origin[3] = {0, 0, 0}, spacing[3] = {1, 1, 1};
+  const uint32_t dims[3] = {3, 3, 3};
+  const std::string path = temp_path("wrong_size");
+  {
+    // 26 doubles for a 27-voxel grid.
+    std::ofstream out(path, std::ios::binary);
+    const std::vector<double> v(26, 1.0);
+    out.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(double)));
+  }
+  arcus_field_t* f = nullptr;
+  // arcus_curved.h: "a file of the wrong size, is ARCUS_ERROR_IO".
+  arcus_status st = arcus_field_create_grid_from_file(ctx(), path.c_str(), ARCUS_FLOAT64, dims, origin, spacing, &f);
+  EXPECT_EQ(st, ARCUS_ERROR_IO) << arcus_status_string(st);
+  EXPECT_EQ(f, nullptr);
+  EXPECT_GT(std::strlen(arcus_context_last_error(ctx())), 0u);
+  // 27 doubles are 54 floats: also the wrong size for a float32 file of 27 values.
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    const std::vector<double> v(27, 1.0);
+    out.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(double)));
+  }
+  st = arcus_field_create_grid_from_file(ctx(), path.c_str(), ARCUS_FLOAT32, dims, origin, spacing, &f);
+  EXPECT_EQ(st, ARCUS_ERROR_IO) << arcus_status_string(st);
+  EXPECT_EQ(f, nullptr);
+  // ... and the right size for float64.
+  st = arcus_field_create_grid_from_file(ctx(), path.c_str(), ARCUS_FLOAT64, dims, origin, spacing, &f);
+  EXPECT_EQ(st, ARCUS_SUCCESS) << last_error();
+  if (f) arcus_field_release(f);
+  std::remove(path.c_str());
+  // A file that does not exist.
+  f = nullptr;
+  st = arcus_field_create_grid_from_file(ctx(), path.c_str(), ARCUS_FLOAT64, dims, origin, spacing, &f);
+  EXPECT_EQ(st, ARCUS_ERROR_IO);
+  EXPECT_EQ(f, nullptr);
+  EXPECT_GT(std::strlen(arcus_context_last_error(ctx())), 0u);
+}
+
+TEST_F(Grid, GridFilesThatAreNotRegularFilesAreIoErrorsAndNeverBlock) {
+  const uint32_t dims[3] = {2, 2, 2};
+  const double origin[3] = {0, 0, 0}, spacing[3] = {1, 1, 1};
+  arcus_field_t* f = nullptr;
+  EXPECT_EQ(arcus_field_create_grid_from_file(ctx(), "/tmp", ARCUS_FLOAT64, dims, origin, spacing, &f), ARCUS_ERROR_IO);
+  EXPECT_TRUE(contains_ci(last_error().c_str(), "directory")) << last_error();
+  EXPECT_FALSE(contains_ci(last_error().c_str(), "9223372036854775807")) << last_error();
+  // A FIFO with no writer: opening it for reading would wait forever (holding the
+  // context's lock, so every other call on it would hang too).
+  const std::string fifo = ::testing::TempDir() + "arcus_fifo_" + std::to_string(getpid());
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  auto call = std::async(std::launch::async, [&] {
+    arcus_field_t* g = nullptr;
+    return arcus_field_create_grid_from_file(ctx(), fifo.c_str(), ARCUS_FLOAT64, dims, origin, spacing, &g);
+  });
+  if (call.wait_for(std::chrono::seconds(20)) != std::future_status::ready) {
+    const int fd = open(fifo.c_str(), O_WRONLY | O_NONBLOCK);  // release the reader before failing
+    if (fd >= 0) close(fd);
+    FAIL() << "reading a FIFO blocked";
+  }
+  EXPECT_EQ(call.get(), ARCUS_ERROR_IO);
+  EXPECT_TRUE(contains_ci(last_error().c_str(), "FIFO")) << last_error();
+  unlink(fifo.c_str());
+}
+
+// Grid files: the shape is checked before the file is read, and a directory is an I/O
+// error, not a size.
+TEST_F(Grid, GridFileShapeIsCheckedFirstAndADirectoryIsAnIoError) {
+  const uint32_t huge[3] = {1u << 31, 1u << 31, 4};
+  const double origin[3] = {0, 0, 0}, spacing[3] = {1, 1, 1};
+  arcus_field_t* f = nullptr;
+  EXPECT_EQ(arcus_field_create_grid_from_file(ctx(), "/dev/null", ARCUS_FLOAT64, huge, origin, spacing, &f),
+            ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_TRUE(contains_ci(arcus_context_last_error(ctx()), "dims")) << last_error();
+  const uint32_t dims[3] = {2, 2, 2};
+  EXPECT_EQ(arcus_field_create_grid_from_file(ctx(), "/tmp", ARCUS_FLOAT64, dims, origin, spacing, &f),
+            ARCUS_ERROR_IO);
+  EXPECT_EQ(f, nullptr);
 }
 
 }  // namespace

@@ -537,4 +537,50 @@ TEST_F(HardCases, SteepLinearGradientHundredPerMetre) {
   }
 }
 
+// A caller's first DP45 step obeys max_step and the Luneburg cap like every later
+// step: a first step of 20 would otherwise jump over the unit lens unrefracted.
+TEST_F(HardCases, CallersFirstDp45StepIsCappedAndCannotJumpOverALens) {
+  FieldPtr lens = luneburg({0, 0, 0}, 1.0);
+  ASSERT_TRUE(lens);
+  Rays rays;
+  rays.add({-10, 0.5, 0}, {1, 0, 0});
+  arcus_advance_params p = dp45(20.0, 1e-10, 1e-12);
+  p.step = 20.0;
+  Trace t = trace(ctx(), lens.get(), p, rays);
+  ASSERT_EQ(t.status, ARCUS_SUCCESS) << last_error();
+  // A ray at impact parameter b = R/2 passes the focus F = (R, 0, 0) and leaves along
+  // (sqrt(1 − b²), −b, 0) (test_curved_closed_forms.cpp): it ends on that line.  A straight pass
+  // would keep (1, 0, 0) and end 0.5 m off it.  Bounds: dp45_bound over ≤ 20 m, turning π
+  // inside the lens (scale R = 1) and two kinks at its surface; the line's distance from
+  // the end errs by no more than the end point.
+  const V3 exit_dir{std::sqrt(0.75), -0.5, 0.0};
+  PathScale scale{10.02 + 20.0, 20.0};  // |r_end| ≤ |origin| + L
+  scale.turning = kPi;
+  scale.kinks = 2;
+  const V3 off = (t.pos(0) - V3{1, 0, 0});
+  const double from_line = norm(off - dot(off, exit_dir) * exit_dir);
+  std::printf("%.3e m off the exit line (bound %.3e), direction off by %.3e rad (bound %.3e)\n", from_line,
+              dp45_bound(1e-10, 1e-12, scale), angle_between(t.dir(0), exit_dir),
+              dp45_direction_bound(1e-10, 1e-12, scale, 1.0));
+  EXPECT_LT(from_line, dp45_bound(1e-10, 1e-12, scale));
+  EXPECT_LT(angle_between(t.dir(0), exit_dir), dp45_direction_bound(1e-10, 1e-12, scale, 1.0));
+  EXPECT_GT(dot(off, exit_dir), 0.0) << "the ray must be past the focus";
+}
+
+// Tiny but non-zero directions are valid (normalised without underflow); origins whose
+// sum would overflow are still finite and valid; the host and kernel agree on both.
+TEST_F(HardCases, ExtremeButFiniteRaysAreAdvancedAndReportedConsistently) {
+  FieldPtr medium = constant(1.5);
+  ASSERT_TRUE(medium);
+  Rays rays;
+  rays.add({0, 0, 0}, {1e-200, 0, 0});
+  rays.add({1e308, 1e308, 0}, {0, 0, 1});
+  Trace t = trace(ctx(), medium.get(), dp45(2.0, 1e-9, 1e-12), rays);
+  ASSERT_EQ(t.status, ARCUS_SUCCESS) << last_error();
+  EXPECT_EQ(t.ray_status[0], ARCUS_RAY_DONE);
+  EXPECT_DOUBLE_EQ(t.pos(0)[0], 2.0);
+  EXPECT_EQ(t.ray_status[1], ARCUS_RAY_DONE);
+  EXPECT_DOUBLE_EQ(t.pos(1)[2], 2.0);
+}
+
 }  // namespace

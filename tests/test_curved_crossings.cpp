@@ -144,4 +144,19 @@ TEST_F(Crossings, StraightRaysLeaveTheBoxAtTheSlabIntersection) {
   }
 }
 
+// A fixed-step ray that stops at its length reports exactly that length, with a box too.
+TEST_F(Crossings, FixedStepLengthIsExactWithABox) {
+  FieldPtr medium = linear(1.0, {0, 0.1, 0});
+  ASSERT_TRUE(medium);
+  Rays rays;
+  rays.add({0, 0, 0}, {1, 0, 0});
+  arcus_advance_params p = fixed(ARCUS_METHOD_RK4, 0.01, 1000.0);
+  p.precision = ARCUS_PRECISION_FLOAT;
+  set_box(&p, {-1e5, -1e5, -1e5}, {1e5, 1e5, 1e5});
+  Trace t = trace(ctx(), medium.get(), p, rays);
+  ASSERT_EQ(t.status, ARCUS_SUCCESS) << last_error();
+  EXPECT_EQ(t.ray_status[0], ARCUS_RAY_DONE);
+  EXPECT_EQ(t.lengths[0], 1000.0);
+}
+
 }  // namespace

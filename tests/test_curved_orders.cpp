@@ -1,6 +1,6 @@
 // Orders of the integrators on non-linear media with closed forms (thesis §4.3.5,
 // §5.4.1): Maxwell's fish-eye (circles, fisheye_end) and the inside of a Luneburg lens
-// (ellipses, luneburg_end).  test_convergence.cpp does the same on a linear field, where
+// (ellipses, luneburg_end).  test_curved_convergence.cpp does the same on a linear field, where
 // v = n·dr/ds is integrated exactly and only the position errs; here both do.
 //
 // Every observed order is log2(error(h)/error(h/2)) between neighbouring steps, and the
