@@ -653,30 +653,5 @@ TEST(CApiDump, PrintsEightRaysOnTheCatenary) {
   }
 }
 
-// The default path capacity follows the steps actually taken: max_steps bounds it, and
-// the float step count is the kernel's own.
-TEST_F(Api, DefaultPathCapacityFollowsTheStepsTaken) {
-  FieldPtr medium = linear(1.0, {0, 0.1, 0});
-  ASSERT_TRUE(medium);
-  Rays rays;
-  rays.add({0, 0, 0}, {1, 0, 0});
-  arcus_advance_params p = fixed(ARCUS_METHOD_RK4, 1e-4, 1e4);  // 10⁸ steps, but…
-  p.max_steps = 10;                                              // …only 10 taken
-  p.record_path = 1;
-  Trace t = trace(ctx(), medium.get(), p, rays);
-  ASSERT_EQ(t.status, ARCUS_SUCCESS) << last_error();
-  EXPECT_EQ(t.ray_status[0], ARCUS_RAY_STEP_LIMIT);
-  size_t points = 0;
-  ASSERT_EQ(arcus_job_get_path_size(t.job.get(), &points), ARCUS_SUCCESS);
-  EXPECT_EQ(points, 11u);
-
-  // A length and step whose step count differs between float and double arithmetic.
-  arcus_advance_params q = fixed(ARCUS_METHOD_EULER, 7.210077602228678e-03, 196.71196784464513);
-  q.precision = ARCUS_PRECISION_FLOAT;
-  q.record_path = 1;
-  t = trace(ctx(), medium.get(), q, rays);
-  EXPECT_EQ(t.status, ARCUS_SUCCESS) << last_error();
-}
-
 }  // namespace
 #endif
