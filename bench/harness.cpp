@@ -150,16 +150,16 @@ void print_row(const Row& r) {
 AdvanceRun advance(arcus_context_t* ctx, arcus_field_t* field, const Setting& s, const RaySet& rays, std::size_t count) {
   const arcus_advance_params params = params_for(s);
   arcus_job_t* raw = nullptr;
-  check(arcus_advance(ctx, field, &params, count, rays.origins.data(), rays.directions.data(), nullptr, &raw), ctx,
-        std::string("arcus_advance (") + method_name(s.method) + ")");
+  check(arcus_curved_advance(ctx, field, &params, count, rays.origins.data(), rays.directions.data(), nullptr, &raw), ctx,
+                             std::string("arcus_curved_advance (") + method_name(s.method) + ")");
   JobPtr job(raw);
   AdvanceRun r;
   r.count = count;
   r.positions.resize(3 * count);
   r.steps.resize(count);
   r.status.resize(count);
-  check(arcus_job_get_end_states(job.get(), r.positions.data(), nullptr, r.steps.data(), r.status.data(), nullptr), ctx,
-        "arcus_job_get_end_states");
+  check(arcus_job_get_curved_end_states(job.get(), r.positions.data(), nullptr, r.steps.data(), r.status.data(), nullptr), ctx,
+                                        "arcus_job_get_curved_end_states");
   check(arcus_job_get_stats(job.get(), &r.stats), ctx, "arcus_job_get_stats");
   return r;
 }

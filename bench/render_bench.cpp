@@ -254,7 +254,7 @@ Series measure(arcus_context_t* ctx, arcus_scene_t* scene, uint32_t techniques, 
       arcus_job_get_render_stats(job, &fr.stats);
       fr.points.assign(3 * fr.stats.pixels, NAN);
       fr.objects.assign(fr.stats.pixels, -1);
-      arcus_job_get_hits(job, fr.points.data(), fr.objects.data(), nullptr, nullptr, nullptr, nullptr);
+      arcus_job_get_render_hits(job, fr.points.data(), fr.objects.data(), nullptr, nullptr, nullptr, nullptr);
       std::fprintf(stderr, "  frame %d: %.3f s (trace %.3f, walk %.3f, photons %.3f, shade %.3f)\n", f + 1, wall,
                    fr.stats.trace_seconds, fr.stats.walk_seconds, fr.stats.photon_seconds, fr.stats.shade_seconds);
       s.wall[f].push_back(wall);

@@ -177,7 +177,7 @@ std::string dp45_section(const Plan& p, const DpComparison& dp) {
      << fmt("%.1f×", dp.arcus.best_rays_per_second() / dp.peer_all_cores.best_rays_per_second())
      << " of it). Per core, arcus does " << fmt("%.2f×", dp.per_core_ratio())
      << " the peer's single-thread rays/s (median " << fmt("%.2f×", dp.per_core_ratio_of_medians())
-     << "). Counting all of arcus_advance (host copies included, median): "
+     << "). Counting all of arcus_curved_advance (host copies included, median): "
      << fmt("%.1f×", static_cast<double>(dp.arcus.rays) / dp.arcus.wall_seconds / dp.peer.rays_per_second())
      << " the peer's median.";
   if (dp.cheapest_equal_error)
@@ -259,13 +259,13 @@ const FirstJob* find_run(const FirstJobStudy& s, const std::string& scenario) {
 std::string first_job_section(const FirstJobStudy& s) {
   std::ostringstream md;
   md << "## First job of a new process\n\n"
-     << "Context creation + the first arcus_advance of the RK4 (h " << kRk4PeakStep << ") and DP45 (tol "
+     << "Context creation + the first arcus_curved_advance of the RK4 (h " << kRk4PeakStep << ") and DP45 (tol "
      << fmt("%.3g", kHeadlineTol) << ") kernels above (double, linear field, 256 rays, short paths), in a child "
         "process (`arcus_bench --first-job`) with ARCUS_CACHE_DIR and POCL_CACHE_DIR in fresh temp dirs (removed "
         "afterwards). cold: both caches empty; warm: a second process on the same dirs (arcus' disk cache hit); PoCL "
         "cache only: ARCUS_CACHE_DIR=off, PoCL's cache warm; arcus cache only: arcus' cache warm, a fresh "
         "POCL_CACHE_DIR. process: spawn to exit as the parent sees it (loading the libraries and the OpenCL "
-        "platform included); advance: all of arcus_advance, build: getting the program, program: where it came "
+        "platform included); advance: all of arcus_curved_advance, build: getting the program, program: where it came "
         "from (arcus_job_stats.program_origin). Advance time beyond build is mostly PoCL generating the kernel's "
         "launch code at its first launch, which PoCL's cache keeps. One process per scenario: single samples.\n\n";
   if (!s.error.empty()) return md.str() + "Not measured: " + s.error + "\n\n";

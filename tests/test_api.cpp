@@ -160,7 +160,7 @@ TEST(ReferenceCounting, RetainKeepsHandlesAliveAndOwnersKeepTheirContext) {
   arcus_advance_params p = dp45(1.0, 1e-9, 1e-12);
   const double o[3] = {0, 0, 0}, d[3] = {1, 0, 0};
   arcus_job_t* j = nullptr;
-  ASSERT_EQ(arcus_advance(c, f, &p, 1, o, d, nullptr, &j), ARCUS_SUCCESS) << arcus_context_last_error(c);
+  ASSERT_EQ(arcus_curved_advance(c, f, &p, 1, o, d, nullptr, &j), ARCUS_SUCCESS) << arcus_context_last_error(c);
   ASSERT_EQ(arcus_job_retain(j), ARCUS_SUCCESS);
   ASSERT_EQ(arcus_job_release(j), ARCUS_SUCCESS);
 
@@ -172,7 +172,7 @@ TEST(ReferenceCounting, RetainKeepsHandlesAliveAndOwnersKeepTheirContext) {
   EXPECT_EQ(count, 1u);
   double pos[3];
   int32_t st = -1;
-  ASSERT_EQ(arcus_job_get_end_states(j, pos, nullptr, nullptr, &st, nullptr), ARCUS_SUCCESS);
+  ASSERT_EQ(arcus_job_get_curved_end_states(j, pos, nullptr, nullptr, &st, nullptr), ARCUS_SUCCESS);
   EXPECT_EQ(st, ARCUS_RAY_DONE);
   // DP45 at rtol 1e-9 over 1 m of a catenary that turns by 0.1 rad: dp45_bound.
   const RayState want = catenary_end(1.0, {0, 0.1, 0}, {0, 0, 0}, {1, 0, 0}, 1.0);
@@ -337,28 +337,29 @@ TEST_F(Api, FeaturesReportedPerJob) {
     EXPECT_EQ(t.status, ARCUS_SUCCESS) << last_error();
     return t.features;
   };
-  EXPECT_EQ(features(atm.get(), dp45(1.0, 1e-9, 1e-12)), ARCUS_FEATURE_DP45 | ARCUS_FEATURE_FIELD_ATMOSPHERE);
+  EXPECT_EQ(features(atm.get(), dp45(1.0, 1e-9, 1e-12)), ARCUS_FEATURE_CURVED_DP45 | ARCUS_FEATURE_CURVED_FIELD_ATMOSPHERE);
   arcus_advance_params p = fixed(ARCUS_METHOD_RK4, 0.1, 1.0);
   set_box(&p, {-10, -10, -10}, {10, 10, 10});
   p.record_path = 1;
   EXPECT_EQ(features(lin.get(), p),
-            ARCUS_FEATURE_RK4 | ARCUS_FEATURE_FIELD_LINEAR | ARCUS_FEATURE_BOX | ARCUS_FEATURE_RECORD_PATH);
+            ARCUS_FEATURE_CURVED_RK4 | ARCUS_FEATURE_CURVED_FIELD_LINEAR | ARCUS_FEATURE_CURVED_BOX | ARCUS_FEATURE_CURVED_RECORD_PATH);
   p = fixed(ARCUS_METHOD_EULER, 0.1, 1.0);
   p.precision = ARCUS_PRECISION_FLOAT;
-  EXPECT_EQ(features(grd.get(), p), ARCUS_FEATURE_EULER | ARCUS_FEATURE_FIELD_GRID | ARCUS_FEATURE_FLOAT);
-  EXPECT_EQ(features(lin.get(), fixed(ARCUS_METHOD_RK2, 0.1, 1.0)), ARCUS_FEATURE_RK2 | ARCUS_FEATURE_FIELD_LINEAR);
-  EXPECT_EQ(features(con.get(), dp45(1.0, 1e-9, 1e-12)), ARCUS_FEATURE_STRAIGHT);
+  EXPECT_EQ(features(grd.get(), p), ARCUS_FEATURE_CURVED_EULER | ARCUS_FEATURE_CURVED_FIELD_GRID | ARCUS_FEATURE_FLOAT);
+  EXPECT_EQ(features(lin.get(), fixed(ARCUS_METHOD_RK2, 0.1, 1.0)), ARCUS_FEATURE_CURVED_RK2 | ARCUS_FEATURE_CURVED_FIELD_LINEAR);
+  EXPECT_EQ(features(con.get(), dp45(1.0, 1e-9, 1e-12)), ARCUS_FEATURE_CURVED_STRAIGHT);
 
   char buf[256];
-  ASSERT_EQ(arcus_features_to_string(ARCUS_FEATURE_DP45 | ARCUS_FEATURE_FIELD_ATMOSPHERE | ARCUS_FEATURE_FLOAT, buf,
+  ASSERT_EQ(arcus_features_to_string(ARCUS_FEATURE_CURVED_DP45 | ARCUS_FEATURE_CURVED_FIELD_ATMOSPHERE | ARCUS_FEATURE_FLOAT, buf,
                                      sizeof buf),
             ARCUS_SUCCESS);
   EXPECT_TRUE(contains_ci(buf, "DP45")) << buf;
   EXPECT_TRUE(contains_ci(buf, "ATMOSPHERE")) << buf;
   EXPECT_TRUE(contains_ci(buf, "FLOAT")) << buf;
   EXPECT_FALSE(contains_ci(buf, "STRAIGHT")) << buf;
-  ASSERT_EQ(arcus_features_to_string(ARCUS_FEATURE_STRAIGHT | ARCUS_FEATURE_BOX, buf, sizeof buf), ARCUS_SUCCESS);
-  EXPECT_STREQ(buf, "STRAIGHT BOX");
+  ASSERT_EQ(arcus_features_to_string(ARCUS_FEATURE_CURVED_STRAIGHT | ARCUS_FEATURE_CURVED_BOX, buf, sizeof buf),
+            ARCUS_SUCCESS);
+  EXPECT_STREQ(buf, "CURVED_STRAIGHT CURVED_BOX");
 }
 
 TEST_F(Api, SecondIdenticalJobHitsTheProgramCache) {
@@ -416,14 +417,14 @@ TEST_F(Api, EndStatesGettersAcceptNullForUnwantedArrays) {
   const Trace t = trace(ctx(), field.get(), dp45(2.0, 1e-9, 1e-12), rays);
   ASSERT_EQ(t.status, ARCUS_SUCCESS);
   double pos[3] = {0, 0, 0};
-  ASSERT_EQ(arcus_job_get_end_states(t.job.get(), pos, nullptr, nullptr, nullptr, nullptr), ARCUS_SUCCESS);
+  ASSERT_EQ(arcus_job_get_curved_end_states(t.job.get(), pos, nullptr, nullptr, nullptr, nullptr), ARCUS_SUCCESS);
   EXPECT_EQ(pos[0], t.positions[0]);
-  ASSERT_EQ(arcus_job_get_end_states(t.job.get(), nullptr, nullptr, nullptr, nullptr, nullptr), ARCUS_SUCCESS);
+  ASSERT_EQ(arcus_job_get_curved_end_states(t.job.get(), nullptr, nullptr, nullptr, nullptr, nullptr), ARCUS_SUCCESS);
   // End directions are unit vectors.
   EXPECT_NEAR(norm(t.dir(0)), 1.0, 1e-15);
   // Without record_path there are no paths: arcus_curved.h promises INVALID_ARGUMENT.
   size_t total = 123;
-  EXPECT_EQ(arcus_job_get_path_size(t.job.get(), &total), ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(arcus_job_get_curved_path_size(t.job.get(), &total), ARCUS_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(total, 123u);
   EXPECT_TRUE(contains_ci(last_error().c_str(), "record_path")) << last_error();
 }
@@ -444,10 +445,10 @@ TEST_F(Api, RecordedPathsLieOnTheCatenary) {
   const Trace t = trace(ctx(), field.get(), p, rays);
   ASSERT_EQ(t.status, ARCUS_SUCCESS);
   size_t total = 0;
-  ASSERT_EQ(arcus_job_get_path_size(t.job.get(), &total), ARCUS_SUCCESS);
+  ASSERT_EQ(arcus_job_get_curved_path_size(t.job.get(), &total), ARCUS_SUCCESS);
   std::vector<uint64_t> offsets(rays.size() + 1), needed(rays.size());
   std::vector<double> pts(3 * total);
-  ASSERT_EQ(arcus_job_get_paths(t.job.get(), offsets.data(), pts.data(), needed.data()), ARCUS_SUCCESS);
+  ASSERT_EQ(arcus_job_get_curved_paths(t.job.get(), offsets.data(), pts.data(), needed.data()), ARCUS_SUCCESS);
   EXPECT_EQ(offsets[0], 0u);
   EXPECT_EQ(offsets.back(), total);
   for (size_t i = 0; i < rays.size(); ++i) {
@@ -600,10 +601,10 @@ TEST_F(Api, DeterminismConcurrentCallsOnOneContextGiveTheSerialResults) {
   for (int k = 0; k < 4; ++k)
     threads.emplace_back([&, k] {
       arcus_job_t* job = nullptr;
-      status[k] = arcus_advance(ctx(), field.get(), &p, rays.size(), rays.origins.data(), rays.directions.data(), nullptr, &job);
+      status[k] = arcus_curved_advance(ctx(), field.get(), &p, rays.size(), rays.origins.data(), rays.directions.data(), nullptr, &job);
       if (!job) return;
       positions[k].resize(3 * rays.size());
-      arcus_job_get_end_states(job, positions[k].data(), nullptr, nullptr, nullptr, nullptr);
+      arcus_job_get_curved_end_states(job, positions[k].data(), nullptr, nullptr, nullptr, nullptr);
       arcus_job_release(job);
     });
   for (std::thread& t : threads) t.join();

@@ -424,7 +424,7 @@ TEST_F(ClosedForms, ConstantFieldIsAStraightLineWithStraightFeatureOnly) {
     EXPECT_EQ(t.status, ARCUS_SUCCESS) << "method " << m << ": " << last_error();
     if (t.status != ARCUS_SUCCESS) continue;
     // No integrator is compiled for a constant field, whatever the method asked for.
-    EXPECT_EQ(t.features, ARCUS_FEATURE_STRAIGHT) << "method " << m;
+    EXPECT_EQ(t.features, ARCUS_FEATURE_CURVED_STRAIGHT) << "method " << m;
     for (size_t i = 0; i < rays.size(); ++i) {
       const V3 o = rays.origin(i);
       const V3 d = normalize(rays.direction(i));
@@ -454,7 +454,7 @@ TEST_F(ClosedForms, ConstantFieldBoxExitIsTheExactIntersection) {
     const Trace t = trace(ctx(), field.get(), p, rays);
     EXPECT_EQ(t.status, ARCUS_SUCCESS) << "method " << m << ": " << last_error();
     if (t.status != ARCUS_SUCCESS) continue;
-    EXPECT_EQ(t.features, ARCUS_FEATURE_STRAIGHT | ARCUS_FEATURE_BOX);
+    EXPECT_EQ(t.features, ARCUS_FEATURE_CURVED_STRAIGHT | ARCUS_FEATURE_CURVED_BOX);
     for (size_t i = 0; i < rays.size(); ++i) {
       const V3 o = rays.origin(i);
       const V3 d = normalize(rays.direction(i));

@@ -49,9 +49,9 @@ TEST_F(Crossings, Dp45EndsOnTheParabolaWhereItCrossesThePlane) {
   ASSERT_EQ(t.status, ARCUS_SUCCESS) << last_error();
   std::vector<uint64_t> offsets(r.size() + 1);
   size_t total = 0;
-  ASSERT_EQ(arcus_job_get_path_size(t.job.get(), &total), ARCUS_SUCCESS);
+  ASSERT_EQ(arcus_job_get_curved_path_size(t.job.get(), &total), ARCUS_SUCCESS);
   std::vector<double> points(3 * total);
-  ASSERT_EQ(arcus_job_get_paths(t.job.get(), offsets.data(), points.data(), nullptr), ARCUS_SUCCESS);
+  ASSERT_EQ(arcus_job_get_curved_paths(t.job.get(), offsets.data(), points.data(), nullptr), ARCUS_SUCCESS);
   for (size_t i = 0; i < r.size(); ++i) {
     const Crossing want = exact(r.direction(i));
     EXPECT_EQ(t.ray_status[i], ARCUS_RAY_LEFT_BOX) << "ray " << i;

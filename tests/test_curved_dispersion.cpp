@@ -31,17 +31,17 @@ TEST_F(Dispersion, RefractionAt400And700NmInOneJobScalesAsCiddorsRefractivity) {
   for (double h : altitudes) rays.add(o, {std::cos(rad(h)), std::sin(rad(h)), 0.0});
   arcus_job_t* job = nullptr;
   const arcus_advance_params p = dp45(3.0e6, 1e-11, 1e-14);
-  ASSERT_EQ(arcus_advance(ctx(), air.get(), &p, rays.size(), rays.origins.data(), rays.directions.data(),
-                          wavelengths.data(), &job),
-            ARCUS_SUCCESS)
+  ASSERT_EQ(arcus_curved_advance(ctx(), air.get(), &p, rays.size(), rays.origins.data(), rays.directions.data(),
+                                 wavelengths.data(), &job),
+                                 ARCUS_SUCCESS)
       << last_error();
   JobPtr guard(job);
   arcus_features features = 0;
   ASSERT_EQ(arcus_job_get_features(job, &features), ARCUS_SUCCESS);
-  EXPECT_TRUE(features & ARCUS_FEATURE_DISPERSION);
+  EXPECT_TRUE(features & ARCUS_FEATURE_CURVED_DISPERSION);
   std::vector<double> dirs(3 * rays.size());
   std::vector<int32_t> status(rays.size());
-  ASSERT_EQ(arcus_job_get_end_states(job, nullptr, dirs.data(), nullptr, status.data(), nullptr), ARCUS_SUCCESS);
+  ASSERT_EQ(arcus_job_get_curved_end_states(job, nullptr, dirs.data(), nullptr, status.data(), nullptr), ARCUS_SUCCESS);
   std::vector<double> bending(rays.size());
   for (size_t i = 0; i < rays.size(); ++i) {
     EXPECT_EQ(status[i], ARCUS_RAY_DONE);
@@ -82,17 +82,17 @@ TEST_F(Dispersion, NonDispersiveFieldsIgnoreTheWavelengths) {
   const arcus_advance_params p = dp45(4.0, 1e-10, 1e-13);
   const Trace plain = trace(ctx(), lens.get(), p, rays);
   arcus_job_t* job = nullptr;
-  ASSERT_EQ(arcus_advance(ctx(), lens.get(), &p, rays.size(), rays.origins.data(), rays.directions.data(),
-                          garbage.data(), &job),
-            ARCUS_SUCCESS)
+  ASSERT_EQ(arcus_curved_advance(ctx(), lens.get(), &p, rays.size(), rays.origins.data(), rays.directions.data(),
+                                 garbage.data(), &job),
+                                 ARCUS_SUCCESS)
       << last_error();
   JobPtr guard(job);
   std::vector<double> pos(3 * rays.size());
-  ASSERT_EQ(arcus_job_get_end_states(job, pos.data(), nullptr, nullptr, nullptr, nullptr), ARCUS_SUCCESS);
+  ASSERT_EQ(arcus_job_get_curved_end_states(job, pos.data(), nullptr, nullptr, nullptr, nullptr), ARCUS_SUCCESS);
   EXPECT_EQ(pos, plain.positions) << "the same program runs: the array is not even read";
   arcus_features features = 0;
   arcus_job_get_features(job, &features);
-  EXPECT_FALSE(features & ARCUS_FEATURE_DISPERSION);
+  EXPECT_FALSE(features & ARCUS_FEATURE_CURVED_DISPERSION);
 }
 
 TEST_F(Dispersion, BadWavelengthsFlagTheirRaysAndLeaveTheOthersUnharmed) {
@@ -117,11 +117,11 @@ TEST_F(Dispersion, BadWavelengthsFlagTheirRaysAndLeaveTheOthersUnharmed) {
   auto run = [&](const Rays& r, const std::vector<double>& w, std::vector<double>* pos, std::vector<int32_t>* st) {
     arcus_job_t* job = nullptr;
     const arcus_status status =
-        arcus_advance(ctx(), air.get(), &p, r.size(), r.origins.data(), r.directions.data(), w.data(), &job);
+        arcus_curved_advance(ctx(), air.get(), &p, r.size(), r.origins.data(), r.directions.data(), w.data(), &job);
     JobPtr guard(job);
     pos->resize(3 * r.size());
     st->resize(r.size());
-    if (job) arcus_job_get_end_states(job, pos->data(), nullptr, nullptr, st->data(), nullptr);
+    if (job) arcus_job_get_curved_end_states(job, pos->data(), nullptr, nullptr, st->data(), nullptr);
     return status;
   };
   std::vector<double> pos, good_pos;

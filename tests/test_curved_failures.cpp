@@ -1,4 +1,4 @@
-// Rays that cannot go on end FAILED with the reason available (arcus_job_get_failures),
+// Rays that cannot go on end FAILED with the reason available (arcus_job_get_curved_failures),
 // never DONE at a meaningless point; fields whose derived quantities would not be finite
 // are refused at creation; a job's path memory is checked before anything is allocated;
 // a malformed layout override (ARCUS_LANES) is an error, not a guess.
@@ -22,7 +22,7 @@ class Failures : public ArcusTest {
  protected:
   std::vector<int32_t> failures(const Trace& t) {
     std::vector<int32_t> f(t.size(), -1);
-    EXPECT_EQ(arcus_job_get_failures(t.job.get(), f.data()), ARCUS_SUCCESS);
+    EXPECT_EQ(arcus_job_get_curved_failures(t.job.get(), f.data()), ARCUS_SUCCESS);
     return f;
   }
 };
@@ -181,8 +181,8 @@ TEST_F(Failures, PathMemoryIsCheckedBeforeAnythingIsAllocated) {
   p.path_capacity = 0;
   arcus_job_t* job = nullptr;
   const double* origins = static_cast<const double*>(rays_in);
-  EXPECT_EQ(arcus_advance(ctx(), field.get(), &p, count, origins, origins + 3 * count, nullptr, &job),
-            ARCUS_ERROR_OUT_OF_MEMORY);
+  EXPECT_EQ(arcus_curved_advance(ctx(), field.get(), &p, count, origins, origins + 3 * count, nullptr, &job),
+                                 ARCUS_ERROR_OUT_OF_MEMORY);
   getrusage(RUSAGE_SELF, &after);
   EXPECT_EQ(job, nullptr);
   EXPECT_TRUE(contains_ci(last_error().c_str(), "record_path")) << last_error();
@@ -218,7 +218,7 @@ TEST_F(Failures, DefaultPathCapacityFollowsTheStepsTaken) {
   ASSERT_EQ(t.status, ARCUS_SUCCESS) << last_error();
   EXPECT_EQ(t.ray_status[0], ARCUS_RAY_STEP_LIMIT);
   size_t points = 0;
-  ASSERT_EQ(arcus_job_get_path_size(t.job.get(), &points), ARCUS_SUCCESS);
+  ASSERT_EQ(arcus_job_get_curved_path_size(t.job.get(), &points), ARCUS_SUCCESS);
   EXPECT_EQ(points, 11u);
 
   // A length and step whose step count differs between float and double arithmetic.

@@ -222,11 +222,11 @@ TEST_F(HardCases, MirageRayDescendingTurnsAtTheBottomAndClimbsBack) {
   ASSERT_TRUE(all_finite(t));
   EXPECT_EQ(t.ray_status[0], ARCUS_RAY_DONE);
   size_t total = 0;
-  ASSERT_EQ(arcus_job_get_path_size(t.job.get(), &total), ARCUS_SUCCESS);
+  ASSERT_EQ(arcus_job_get_curved_path_size(t.job.get(), &total), ARCUS_SUCCESS);
   ASSERT_GT(total, 2u);
   std::vector<uint64_t> offsets(2);
   std::vector<double> points(3 * total);
-  ASSERT_EQ(arcus_job_get_paths(t.job.get(), offsets.data(), points.data(), nullptr), ARCUS_SUCCESS);
+  ASSERT_EQ(arcus_job_get_curved_paths(t.job.get(), offsets.data(), points.data(), nullptr), ARCUS_SUCCESS);
   double y_min = 1e9;
   for (size_t k = offsets[0]; k < offsets[1]; ++k) y_min = std::min(y_min, points[3 * k + 1]);
   // Snell (exact in a flat atmosphere): at the bottom the ray is horizontal, so

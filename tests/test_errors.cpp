@@ -89,7 +89,7 @@ TEST_F(BadInput, NonPositiveOrNonFiniteAdvanceParametersAreRejected) {
   const double o[3] = {0, 0, 0}, d[3] = {1, 0, 0};
   auto run = [&](const arcus_advance_params& p) {
     arcus_job_t* job = reinterpret_cast<arcus_job_t*>(0x1);  // must be overwritten with NULL
-    const arcus_status st = arcus_advance(ctx(), field.get(), &p, 1, o, d, nullptr, &job);
+    const arcus_status st = arcus_curved_advance(ctx(), field.get(), &p, 1, o, d, nullptr, &job);
     EXPECT_EQ(job, nullptr) << "no job on " << arcus_status_string(st);
     if (job && job != reinterpret_cast<arcus_job_t*>(0x1)) arcus_job_release(job);
     return st;
@@ -181,7 +181,7 @@ TEST(NullPointers, EveryGlobalFunctionRejectsNullOutputs) {
   EXPECT_EQ(arcus_context_set_error_callback(nullptr, nullptr, nullptr), ARCUS_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(arcus_atmosphere_desc_init(nullptr), ARCUS_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(arcus_advance_params_init(nullptr), ARCUS_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(arcus_features_to_string(ARCUS_FEATURE_DP45, nullptr, 64), ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(arcus_features_to_string(ARCUS_FEATURE_CURVED_DP45, nullptr, 64), ARCUS_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(arcus_field_retain(nullptr), ARCUS_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(arcus_field_release(nullptr), ARCUS_ERROR_INVALID_ARGUMENT);
   arcus_field_kind kind;
@@ -193,11 +193,11 @@ TEST(NullPointers, EveryGlobalFunctionRejectsNullOutputs) {
   EXPECT_EQ(arcus_job_release(nullptr), ARCUS_ERROR_INVALID_ARGUMENT);
   size_t count;
   EXPECT_EQ(arcus_job_get_count(nullptr, &count), ARCUS_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(arcus_job_get_end_states(nullptr, nullptr, nullptr, nullptr, nullptr, nullptr),
-            ARCUS_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(arcus_job_get_path_size(nullptr, &count), ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(arcus_job_get_curved_end_states(nullptr, nullptr, nullptr, nullptr, nullptr, nullptr),
+                                            ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(arcus_job_get_curved_path_size(nullptr, &count), ARCUS_ERROR_INVALID_ARGUMENT);
   uint64_t off[2];
-  EXPECT_EQ(arcus_job_get_paths(nullptr, off, nullptr, nullptr), ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(arcus_job_get_curved_paths(nullptr, off, nullptr, nullptr), ARCUS_ERROR_INVALID_ARGUMENT);
   arcus_features features;
   EXPECT_EQ(arcus_job_get_features(nullptr, &features), ARCUS_ERROR_INVALID_ARGUMENT);
   arcus_job_stats stats;
@@ -270,16 +270,16 @@ TEST_F(BadInput, EveryContextFunctionRejectsNullArguments) {
   EXPECT_EQ(arcus_field_evaluate(field.get(), 1, nullptr, &n, nullptr), ARCUS_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(arcus_field_evaluate(field.get(), 1, c, nullptr, nullptr), ARCUS_ERROR_INVALID_ARGUMENT);
 
-  // arcus_advance: each pointer argument NULL in turn.
+  // arcus_curved_advance: each pointer argument NULL in turn.
   arcus_advance_params p = dp45(1.0, 1e-9, 1e-12);
   const double o[3] = {0, 0, 0}, dir[3] = {1, 0, 0};
   arcus_job_t* job = nullptr;
-  EXPECT_EQ(arcus_advance(nullptr, field.get(), &p, 1, o, dir, nullptr, &job), ARCUS_ERROR_INVALID_ARGUMENT);
-  expect_invalid(arcus_advance(ctx(), nullptr, &p, 1, o, dir, nullptr, &job), "field", "advance field");
-  expect_invalid(arcus_advance(ctx(), field.get(), nullptr, 1, o, dir, nullptr, &job), "params", "advance params");
-  expect_invalid(arcus_advance(ctx(), field.get(), &p, 1, nullptr, dir, nullptr, &job), "origins", "advance origins");
-  expect_invalid(arcus_advance(ctx(), field.get(), &p, 1, o, nullptr, nullptr, &job), "directions", "advance directions");
-  expect_invalid(arcus_advance(ctx(), field.get(), &p, 1, o, dir, nullptr, nullptr), "job", "advance job");
+  EXPECT_EQ(arcus_curved_advance(nullptr, field.get(), &p, 1, o, dir, nullptr, &job), ARCUS_ERROR_INVALID_ARGUMENT);
+  expect_invalid(arcus_curved_advance(ctx(), nullptr, &p, 1, o, dir, nullptr, &job), "field", "advance field");
+  expect_invalid(arcus_curved_advance(ctx(), field.get(), nullptr, 1, o, dir, nullptr, &job), "params", "advance params");
+  expect_invalid(arcus_curved_advance(ctx(), field.get(), &p, 1, nullptr, dir, nullptr, &job), "origins", "advance origins");
+  expect_invalid(arcus_curved_advance(ctx(), field.get(), &p, 1, o, nullptr, nullptr, &job), "directions", "advance directions");
+  expect_invalid(arcus_curved_advance(ctx(), field.get(), &p, 1, o, dir, nullptr, nullptr), "job", "advance job");
   EXPECT_EQ(job, nullptr);
 
   // Job accessors with a valid job and NULL outputs.
@@ -288,7 +288,7 @@ TEST_F(BadInput, EveryContextFunctionRejectsNullArguments) {
   const Trace t = trace(ctx(), field.get(), p, rays);
   ASSERT_TRUE(t.job);
   EXPECT_EQ(arcus_job_get_count(t.job.get(), nullptr), ARCUS_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(arcus_job_get_path_size(t.job.get(), nullptr), ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(arcus_job_get_curved_path_size(t.job.get(), nullptr), ARCUS_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(arcus_job_get_features(t.job.get(), nullptr), ARCUS_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(arcus_job_get_stats(t.job.get(), nullptr), ARCUS_ERROR_INVALID_ARGUMENT);
 }
@@ -306,10 +306,10 @@ TEST_F(BadInput, PathOverflowKeepsTheJobAndReportsWhatWasNeeded) {
   EXPECT_EQ(t.status, ARCUS_ERROR_PATH_OVERFLOW);
   ASSERT_TRUE(t.job) << "the job must come back with ARCUS_ERROR_PATH_OVERFLOW";
   size_t total = 0;
-  ASSERT_EQ(arcus_job_get_path_size(t.job.get(), &total), ARCUS_SUCCESS);
+  ASSERT_EQ(arcus_job_get_curved_path_size(t.job.get(), &total), ARCUS_SUCCESS);
   std::vector<uint64_t> offsets(rays.size() + 1), needed(rays.size());
   std::vector<double> points(3 * total);
-  ASSERT_EQ(arcus_job_get_paths(t.job.get(), offsets.data(), points.data(), needed.data()), ARCUS_SUCCESS);
+  ASSERT_EQ(arcus_job_get_curved_paths(t.job.get(), offsets.data(), points.data(), needed.data()), ARCUS_SUCCESS);
   for (size_t i = 0; i < rays.size(); ++i) {
     const uint64_t kept = offsets[i + 1] - offsets[i];
     EXPECT_LE(kept, 3u) << "ray " << i;
@@ -326,7 +326,7 @@ TEST_F(BadInput, PathOverflowKeepsTheJobAndReportsWhatWasNeeded) {
   EXPECT_EQ(ok.status, ARCUS_SUCCESS);
   ASSERT_TRUE(ok.job);
   std::vector<uint64_t> needed_ok(rays.size()), offsets_ok(rays.size() + 1);
-  ASSERT_EQ(arcus_job_get_paths(ok.job.get(), offsets_ok.data(), nullptr, needed_ok.data()), ARCUS_SUCCESS);
+  ASSERT_EQ(arcus_job_get_curved_paths(ok.job.get(), offsets_ok.data(), nullptr, needed_ok.data()), ARCUS_SUCCESS);
   for (size_t i = 0; i < rays.size(); ++i) {
     EXPECT_EQ(needed_ok[i], needed[i]) << "ray " << i;
     EXPECT_EQ(offsets_ok[i + 1] - offsets_ok[i], needed_ok[i]) << "ray " << i;
@@ -356,11 +356,11 @@ TEST_F(BadInput, ErrorCallbackSeesEveryErrorUntilRemoved) {
   // A successful call does not call it.
   auto ok = constant(1.0);
   EXPECT_EQ(seen.calls, 1);
-  // An error in arcus_advance does.
+  // An error in arcus_curved_advance does.
   arcus_advance_params p = dp45(-1.0, 1e-9, 1e-12);
   const double o[3] = {0, 0, 0}, d[3] = {1, 0, 0};
   arcus_job_t* job = nullptr;
-  EXPECT_EQ(arcus_advance(ctx(), ok.get(), &p, 1, o, d, nullptr, &job), ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(arcus_curved_advance(ctx(), ok.get(), &p, 1, o, d, nullptr, &job), ARCUS_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(seen.calls, 2);
   EXPECT_TRUE(contains_ci(seen.message.c_str(), "length")) << seen.message;
   // Removed: no more calls.

@@ -41,12 +41,12 @@ TEST_F(Handles, AHandleOfTheWrongTypeIsRejectedWithAMessage) {
   EXPECT_EQ(arcus_job_release(reinterpret_cast<arcus_job_t*>(field.get())), ARCUS_ERROR_INVALID_ARGUMENT);
   // The message also lands on the context of the object that was passed.
   EXPECT_TRUE(contains_ci(arcus_context_last_error(ctx()), "job is a field")) << arcus_context_last_error(ctx());
-  // As the field argument of arcus_advance.
+  // As the field argument of arcus_curved_advance.
   arcus_advance_params p = dp45(1.0, 1e-9, 1e-12);
   arcus_job_t* job = nullptr;
-  EXPECT_EQ(arcus_advance(ctx(), reinterpret_cast<arcus_field_t*>(t.job.get()), &p, 1, rays.origins.data(),
-                          rays.directions.data(), nullptr, &job),
-            ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(arcus_curved_advance(ctx(), reinterpret_cast<arcus_field_t*>(t.job.get()), &p, 1, rays.origins.data(),
+                                 rays.directions.data(), nullptr, &job),
+                                 ARCUS_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(job, nullptr);
   EXPECT_TRUE(contains_ci(arcus_context_last_error(ctx()), "field is a job")) << arcus_context_last_error(ctx());
   // Nothing was harmed: both objects still work.
@@ -138,16 +138,16 @@ TEST(Contexts, AJobsResultsCanBeReadAfterTheUserReleasedItsContext) {
   p.record_path = 1;
   const double o[3] = {0, 0, 0}, d[3] = {1, 0.1, 0};
   arcus_job_t* job = nullptr;
-  ASSERT_EQ(arcus_advance(c, f, &p, 1, o, d, nullptr, &job), ARCUS_SUCCESS);
+  ASSERT_EQ(arcus_curved_advance(c, f, &p, 1, o, d, nullptr, &job), ARCUS_SUCCESS);
   ASSERT_EQ(arcus_field_release(f), ARCUS_SUCCESS);
   ASSERT_EQ(arcus_context_release(c), ARCUS_SUCCESS);  // the user's reference; the job keeps its own
   double pos[3];
   int32_t status = -1;
-  ASSERT_EQ(arcus_job_get_end_states(job, pos, nullptr, nullptr, &status, nullptr), ARCUS_SUCCESS);
+  ASSERT_EQ(arcus_job_get_curved_end_states(job, pos, nullptr, nullptr, &status, nullptr), ARCUS_SUCCESS);
   EXPECT_EQ(status, ARCUS_RAY_DONE);
   EXPECT_LT(distance({pos[0], pos[1], pos[2]}, catenary_end(1.0, {0, 0.1, 0}, {0, 0, 0}, {1, 0.1, 0}, 10.0).pos), 1e-8);
   size_t points = 0;
-  EXPECT_EQ(arcus_job_get_path_size(job, &points), ARCUS_SUCCESS);
+  EXPECT_EQ(arcus_job_get_curved_path_size(job, &points), ARCUS_SUCCESS);
   EXPECT_GT(points, 2u);
   ASSERT_EQ(arcus_job_release(job), ARCUS_SUCCESS);  // frees the context too
 }
@@ -209,7 +209,7 @@ TEST(Contexts, AFieldReleasedByAnotherThreadWhileACallWaitsToUseItIsFreedOnlyAft
       p.progress_user = &holder;
       const double o[3] = {0, 0, 0}, d[3] = {1, 0, 0};
       arcus_job_t* j = nullptr;
-      EXPECT_EQ(arcus_advance(c, slow_field, &p, 1, o, d, nullptr, &j), ARCUS_ERROR_CANCELLED);
+      EXPECT_EQ(arcus_curved_advance(c, slow_field, &p, 1, o, d, nullptr, &j), ARCUS_ERROR_CANCELLED);
       arcus_job_release(j);
     });
     holder.wait_until_holding();

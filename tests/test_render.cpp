@@ -63,7 +63,7 @@ class Render : public ArcusTest {
       if (!job) break;
     }
     if (job) {
-      arcus_job_get_image_size(job, &out.width, &out.height);
+      arcus_job_get_render_image_size(job, &out.width, &out.height);
       const size_t n = size_t(out.width) * out.height;
       out.rgb.resize(3 * n);
       out.points.resize(3 * n);
@@ -72,10 +72,10 @@ class Render : public ArcusTest {
       out.primitives.resize(n);
       out.steps.resize(n);
       out.tests.resize(n);
-      EXPECT_EQ(arcus_job_get_image(job, out.rgb.data()), ARCUS_SUCCESS);
-      EXPECT_EQ(arcus_job_get_hits(job, out.points.data(), out.objects.data(), out.primitives.data(),
-                                   out.distances.data(), out.steps.data(), out.tests.data()),
-                ARCUS_SUCCESS);
+      EXPECT_EQ(arcus_job_get_render_image(job, out.rgb.data()), ARCUS_SUCCESS);
+      EXPECT_EQ(arcus_job_get_render_hits(job, out.points.data(), out.objects.data(), out.primitives.data(),
+                                          out.distances.data(), out.steps.data(), out.tests.data()),
+                                          ARCUS_SUCCESS);
       EXPECT_EQ(arcus_job_get_render_stats(job, &out.stats), ARCUS_SUCCESS);
       arcus_job_release(job);
     }
@@ -440,12 +440,12 @@ TEST_F(Render, ASpectralSunsetHasAGreenUpperRimAndCompilesDispersionOnlyWhenSpec
   ASSERT_EQ(arcus_render_frame(r, nullptr, nullptr, &job), ARCUS_SUCCESS) << last_error();
   arcus_features features = 0;
   ASSERT_EQ(arcus_job_get_features(job, &features), ARCUS_SUCCESS);
-  EXPECT_TRUE(features & ARCUS_FEATURE_DISPERSION);
+  EXPECT_TRUE(features & ARCUS_FEATURE_CURVED_DISPERSION);
   const int w = 120, h = 60;
   std::vector<float> rgb(w * h * 3);
-  ASSERT_EQ(arcus_job_get_image(job, rgb.data()), ARCUS_SUCCESS);
+  ASSERT_EQ(arcus_job_get_render_image(job, rgb.data()), ARCUS_SUCCESS);
   std::vector<int32_t> objects(w * h);  // as the first (shortest) wavelength sees them
-  ASSERT_EQ(arcus_job_get_hits(job, nullptr, objects.data(), nullptr, nullptr, nullptr, nullptr), ARCUS_SUCCESS);
+  ASSERT_EQ(arcus_job_get_render_hits(job, nullptr, objects.data(), nullptr, nullptr, nullptr, nullptr), ARCUS_SUCCESS);
   arcus_job_release(job);
   arcus_renderer_release(r);
   arcus_scene_release(scene);
@@ -466,8 +466,8 @@ TEST_F(Render, ASpectralSunsetHasAGreenUpperRimAndCompilesDispersionOnlyWhenSpec
   ASSERT_EQ(arcus_renderer_create(rgb_scene, &r), ARCUS_SUCCESS);
   ASSERT_EQ(arcus_render_frame(r, nullptr, nullptr, &job), ARCUS_SUCCESS) << last_error();
   ASSERT_EQ(arcus_job_get_features(job, &features), ARCUS_SUCCESS);
-  EXPECT_FALSE(features & ARCUS_FEATURE_DISPERSION);
-  EXPECT_TRUE(features & ARCUS_FEATURE_GEOMETRY);
+  EXPECT_FALSE(features & ARCUS_FEATURE_CURVED_DISPERSION);
+  EXPECT_TRUE(features & ARCUS_FEATURE_RENDER_GEOMETRY);
   arcus_job_release(job);
   arcus_renderer_release(r);
   arcus_scene_release(rgb_scene);

@@ -67,10 +67,10 @@ TEST_F(Scenes, TheLuneburgSceneLoadsAndFocusesItsRays) {
   arcus_advance_params p;
   ASSERT_EQ(arcus_scene_get_advance_params(scene.get(), &p), ARCUS_SUCCESS);
   EXPECT_EQ(p.progress, nullptr);
-  // Determinism: the scene's job is arcus_advance with the scene's rays and settings.
+  // Determinism: the scene's job is arcus_curved_advance with the scene's rays and settings.
   // (The lens' physics is checked against its closed form in test_curved_closed_forms.)
   arcus_job_t* job = nullptr;
-  ASSERT_EQ(arcus_scene_advance(scene.get(), nullptr, nullptr, &job), ARCUS_SUCCESS) << last_error();
+  ASSERT_EQ(arcus_curved_advance_scene(scene.get(), nullptr, nullptr, &job), ARCUS_SUCCESS) << last_error();
   JobPtr job_guard(job);
   Rays rays;
   for (size_t i = 0; i < count; ++i)
@@ -79,7 +79,7 @@ TEST_F(Scenes, TheLuneburgSceneLoadsAndFocusesItsRays) {
   const Trace direct = trace(ctx(), field, p, rays);
   ASSERT_EQ(direct.status, ARCUS_SUCCESS);
   std::vector<double> pos(3 * count);
-  ASSERT_EQ(arcus_job_get_end_states(job, pos.data(), nullptr, nullptr, nullptr, nullptr), ARCUS_SUCCESS);
+  ASSERT_EQ(arcus_job_get_curved_end_states(job, pos.data(), nullptr, nullptr, nullptr, nullptr), ARCUS_SUCCESS);
   EXPECT_EQ(pos, direct.positions);
 }
 
@@ -167,14 +167,14 @@ TEST_F(Scenes, ScenesAndRequestsBeyondTheBoundsAreRefusedBeforeAllocating) {
   auto field = constant(1.0);
   arcus_advance_params p = fixed(ARCUS_METHOD_RK4, 0.1, 1.0);
   arcus_job_t* job = nullptr;
-  EXPECT_EQ(arcus_advance(ctx(), field.get(), &p, count, origins.data(), directions.data(), nullptr, &job),
-            ARCUS_ERROR_OUT_OF_MEMORY);
+  EXPECT_EQ(arcus_curved_advance(ctx(), field.get(), &p, count, origins.data(), directions.data(), nullptr, &job),
+                                 ARCUS_ERROR_OUT_OF_MEMORY);
   EXPECT_EQ(job, nullptr);
   EXPECT_TRUE(contains_ci(last_error().c_str(), "4194304 rays needs")) << last_error();
   // A malformed bound is said to be one.
   ScopedEnv bad("ARCUS_MEMORY_LIMIT", "lots");
-  EXPECT_EQ(arcus_advance(ctx(), field.get(), &p, 1, origins.data(), directions.data(), nullptr, &job),
-            ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(arcus_curved_advance(ctx(), field.get(), &p, 1, origins.data(), directions.data(), nullptr, &job),
+                                 ARCUS_ERROR_INVALID_ARGUMENT);
   EXPECT_TRUE(contains_ci(last_error().c_str(), "ARCUS_MEMORY_LIMIT = 'lots' is not a positive size")) << last_error();
 }
 

@@ -160,11 +160,11 @@ int main(int argc, char** argv) {
         std::printf("frame %d: %.3f s, %.2f steps/ray, %.2f tests/ray\n", f, st.total_seconds,
                     double(st.steps) / st.pixels, double(st.tests) / st.pixels);
     }
-    check(arcus_job_write_image(job, o.exr.c_str(), o.png.empty() ? nullptr : o.png.c_str()), "write");
+    check(arcus_job_write_render_image(job, o.exr.c_str(), o.png.empty() ? nullptr : o.png.c_str()), "write");
     const char* name = nullptr;
     arcus_scene_get_name(scene, &name);
     uint32_t width = 0, height = 0;
-    check(arcus_job_get_image_size(job, &width, &height), "image size");
+    check(arcus_job_get_render_image_size(job, &width, &height), "image size");
     std::printf("%s: %ux%u px, %d frame(s) in %.3f s\n", name, width, height, o.frames, seconds);
     std::printf("  last frame: trace %.3f s, walk %.3f s, photons %.3f s, shading %.3f s, total %.3f s\n",
                 total.trace_seconds, total.walk_seconds, total.photon_seconds, total.shade_seconds,

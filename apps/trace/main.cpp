@@ -3,7 +3,7 @@
 //   arcus_trace SCENE.json [--out DIR] [--device N] [--quiet]
 //
 // The library reads and checks the scene (arcus_scene_load; schema in scenes/README.md),
-// advances its rays (arcus_scene_advance, with a progress bar on a terminal) and this
+// advances its rays (arcus_curved_advance_scene, with a progress bar on a terminal) and this
 // tool writes into DIR (default out/<scene name>):
 //   rays.csv    ray, origin xyz, initial direction xyz (as given), wavelength (if given),
 //               end position xyz, end direction xyz (unit), arc length, accepted steps,
@@ -145,19 +145,19 @@ void read_results(arcus_context_t* ctx, arcus_job_t* job, Results* r) {
   r->steps.resize(n);
   r->ray_status.resize(n);
   r->failures.resize(n);
-  check(arcus_job_get_end_states(job, r->end_positions.data(), r->end_directions.data(), r->steps.data(),
-                                 r->ray_status.data(), r->lengths.data()),
-        ctx, "reading the end states");
-  check(arcus_job_get_failures(job, r->failures.data()), ctx, "reading the failure reasons");
+  check(arcus_job_get_curved_end_states(job, r->end_positions.data(), r->end_directions.data(), r->steps.data(),
+                                        r->ray_status.data(), r->lengths.data()),
+                                        ctx, "reading the end states");
+  check(arcus_job_get_curved_failures(job, r->failures.data()), ctx, "reading the failure reasons");
   check(arcus_job_get_features(job, &r->features), ctx, "reading the job's features");
   check(arcus_job_get_stats(job, &r->stats), ctx, "reading the job's statistics");
   size_t total = 0;
-  if (arcus_job_get_path_size(job, &total) != ARCUS_SUCCESS) return;  // no record_path
+  if (arcus_job_get_curved_path_size(job, &total) != ARCUS_SUCCESS) return;  // no record_path
   r->path_offsets.resize(n + 1);
   r->path_needed.resize(n);
   r->path_points.resize(total * 3);
-  check(arcus_job_get_paths(job, r->path_offsets.data(), r->path_points.data(), r->path_needed.data()), ctx,
-        "reading the paths");
+  check(arcus_job_get_curved_paths(job, r->path_offsets.data(), r->path_points.data(), r->path_needed.data()), ctx,
+                                   "reading the paths");
 }
 
 bool partial_result(arcus_status s) {
@@ -179,7 +179,7 @@ void run(const Options& options) {
             << r.device.name << std::endl;
   const bool bar = !options.quiet && isatty(STDERR_FILENO);
   arcus_job_t* raw_job = nullptr;
-  const arcus_status s = arcus_scene_advance(scene.get(), bar ? show_progress : nullptr, nullptr, &raw_job);
+  const arcus_status s = arcus_curved_advance_scene(scene.get(), bar ? show_progress : nullptr, nullptr, &raw_job);
   Job job(raw_job);
   if (!partial_result(s)) check(s, ctx.get(), "advancing the rays ($.integrator, $.rays)");
   r.status = s;

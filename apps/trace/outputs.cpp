@@ -92,7 +92,7 @@ void write_summary(std::ostream& out, const Results& r) {
   if (r.status != ARCUS_SUCCESS) out << "- library result: " << library_failure(r.status, r.message) << "\n";
   const int origin = r.stats.program_origin >= 0 && r.stats.program_origin < 3 ? r.stats.program_origin : 0;
   out << "\n## Timing\n\n"
-      << "| program | kernel | total (arcus_advance) | launches | lanes | groups |\n"
+      << "| program | kernel | total (arcus_curved_advance) | launches | lanes | groups |\n"
       << "|---|---|---|---|---|---|\n"
       << "| " << origins[origin] << ", " << r.stats.build_seconds << " s | " << r.stats.kernel_seconds << " s | "
       << r.stats.total_seconds << " s | " << r.stats.launches << " | " << r.stats.lanes << " | " << r.stats.groups

@@ -15,7 +15,7 @@ struct Pixels {
 };
 
 // The library's linear RGB image (top row first) scaled by `exposure`, encoded with the
-// sRGB transfer function, clamped and rounded exactly as arcus_job_write_image's PNG.
+// sRGB transfer function, clamped and rounded exactly as arcus_job_write_render_image's PNG.
 Pixels to_srgb8(const std::vector<float>& linear_rgb, uint32_t width, uint32_t height, double exposure);
 
 // Draws `image` stretched over the framebuffer (nearest pixel, so a coarse frame shows

@@ -157,9 +157,9 @@ class RenderScene final : public Preview {
     arcus_render_stats st;
     uint32_t width = 0, height = 0;
     check(ctx_, arcus_job_get_render_stats(job.job, &st), "stats");
-    check(ctx_, arcus_job_get_image_size(job.job, &width, &height), "image size");
+    check(ctx_, arcus_job_get_render_image_size(job.job, &width, &height), "image size");
     std::vector<float> rgb(static_cast<size_t>(width) * height * 3);
-    check(ctx_, arcus_job_get_image(job.job, rgb.data()), "image");
+    check(ctx_, arcus_job_get_render_image(job.job, rgb.data()), "image");
     frame->pixels = to_srgb8(rgb, width, height, exposure_);
     char buf[160];
     std::snprintf(buf, sizeof buf, "%ux%u%s | %.3f s | %.1f steps/ray | %.1f tests/ray", width, height,

@@ -10,8 +10,19 @@
  *   - Every call checks its handles: NULL, a released handle, a handle of the wrong
  *     type (a job passed where a field is expected) or an object of another context
  *     gives ARCUS_ERROR_INVALID_ARGUMENT with a message, never undefined behaviour.
- *   - Units: lengths in metres, wavelengths in nanometres (vacuum), temperatures in
- *     kelvin.  Arrays of 3-vectors are tightly packed doubles, x y z per element.
+ *   - Units, in every engine: lengths in metres, wavelengths in nanometres in vacuum,
+ *     temperatures in kelvin, angles in degrees where a name ends in _deg (else
+ *     radians).  Arrays of 3-vectors are tightly packed doubles, x y z per element.
+ *   - Names: arcus_<object>_<verb>[_<what>], where <object> is the handle a call acts
+ *     on (context, field, scene, renderer, water, particle, job) or, for a call that
+ *     makes a job, its engine (arcus_curved_advance, arcus_render_frame,
+ *     arcus_ocean_trace, arcus_rainbow_cast).  What only one engine's jobs hold is
+ *     arcus_job_get_<engine>_<what> (arcus_job_get_ocean_image); what every job has is
+ *     arcus_job_get_<what> (count, features, stats).  Feature bits are
+ *     ARCUS_FEATURE_<ENGINE>_<NAME> and report as "<ENGINE>_<NAME>"; the core's have
+ *     no engine (ARCUS_FEATURE_FLOAT).
+ *   - Renamed calls keep their old spelling for one release, declared ARCUS_DEPRECATED
+ *     (the compiler names the new one); define ARCUS_NO_DEPRECATED to hide them.
  *
  * Errors
  *   Each context keeps the message of the last failed call made with it (what was
@@ -53,6 +64,15 @@
 #  endif
 #else
 #  define ARCUS_API __attribute__((visibility("default")))
+#endif
+
+/* A spelling kept for one release after a rename: calling it warns with the new name. */
+#if defined(__GNUC__) || defined(__clang__)
+#  define ARCUS_DEPRECATED(replacement) __attribute__((deprecated("use " replacement)))
+#elif defined(_MSC_VER)
+#  define ARCUS_DEPRECATED(replacement) __declspec(deprecated("use " replacement))
+#else
+#  define ARCUS_DEPRECATED(replacement)
 #endif
 
 #ifdef __cplusplus
@@ -155,7 +175,7 @@ ARCUS_API arcus_status arcus_features_to_string(arcus_features features, char* b
 typedef int32_t (*arcus_progress_callback)(void* user, double fraction);
 
 /* ---- jobs ----------------------------------------------------------------------
- * A job is the result of one engine call (arcus_advance, ...): it holds its items'
+ * A job is the result of one engine call (arcus_curved_advance, ...): it holds its items'
  * results and how it ran.  Each engine's header has the getters of its results; they
  * reject a job of another engine with ARCUS_ERROR_INVALID_ARGUMENT.                 */
 typedef struct arcus_job_s arcus_job_t;

@@ -64,7 +64,8 @@ typedef struct arcus_inversion {
 typedef struct arcus_atmosphere_desc {
   int32_t spherical;                  /* 0: flat, height = y; 1: Earth-centred sphere  */
   double wavelength;                  /* nm, 300..1690 (Ciddor's dispersion range); per-ray
-                                       * wavelengths given to arcus_advance replace it   */
+                                       * wavelengths given to arcus_curved_advance
+                                       * replace it                                      */
   double sea_level_temperature;       /* K   (US Standard Atmosphere 1976: 288.15)     */
   double sea_level_pressure;          /* Pa  (101325)                                  */
   uint32_t inversion_count;           /* at most ARCUS_MAX_INVERSIONS                  */
@@ -149,7 +150,8 @@ typedef enum arcus_ray_status {
   ARCUS_RAY_DONE = 0,          /* reached `length`                                      */
   ARCUS_RAY_LEFT_BOX = 1,      /* end state is where the path crossed the box           */
   ARCUS_RAY_STEP_LIMIT = 2,    /* max_steps reached before `length`                     */
-  ARCUS_RAY_FAILED = 3,        /* see arcus_ray_failure (arcus_job_get_failures)        */
+  ARCUS_RAY_FAILED = 3,        /* see arcus_ray_failure
+                                * (arcus_job_get_curved_failures)                        */
   ARCUS_RAY_INVALID_INPUT = 4, /* NaN/Inf origin or direction, a zero direction, or a
                                 * wavelength outside 300..1690 nm                       */
   ARCUS_RAY_CANCELLED = 5      /* the job was cancelled before the ray finished         */
@@ -166,22 +168,22 @@ typedef enum arcus_ray_failure {
 } arcus_ray_failure;
 
 /* Kernel features of curved jobs: bits 8-23 of arcus_features.  A constant field
- * compiles ARCUS_FEATURE_STRAIGHT and no integrator at all; each field kind has its
+ * compiles ARCUS_FEATURE_CURVED_STRAIGHT and no integrator at all; each field kind has its
  * own bit, as it has its own program. */
-#define ARCUS_FEATURE_STRAIGHT (UINT64_C(1) << 8)
-#define ARCUS_FEATURE_EULER (UINT64_C(1) << 9)
-#define ARCUS_FEATURE_RK2 (UINT64_C(1) << 10)
-#define ARCUS_FEATURE_RK4 (UINT64_C(1) << 11)
-#define ARCUS_FEATURE_DP45 (UINT64_C(1) << 12)
-#define ARCUS_FEATURE_FIELD_LINEAR (UINT64_C(1) << 13)
-#define ARCUS_FEATURE_FIELD_LINEAR_N2 (UINT64_C(1) << 14)
-#define ARCUS_FEATURE_FIELD_LUNEBURG (UINT64_C(1) << 15)
-#define ARCUS_FEATURE_FIELD_FISHEYE (UINT64_C(1) << 16)
-#define ARCUS_FEATURE_FIELD_ATMOSPHERE (UINT64_C(1) << 17)
-#define ARCUS_FEATURE_FIELD_GRID (UINT64_C(1) << 18)
-#define ARCUS_FEATURE_BOX (UINT64_C(1) << 19)
-#define ARCUS_FEATURE_RECORD_PATH (UINT64_C(1) << 20)
-#define ARCUS_FEATURE_DISPERSION (UINT64_C(1) << 21) /* per-ray wavelengths, dispersive field */
+#define ARCUS_FEATURE_CURVED_STRAIGHT (UINT64_C(1) << 8)
+#define ARCUS_FEATURE_CURVED_EULER (UINT64_C(1) << 9)
+#define ARCUS_FEATURE_CURVED_RK2 (UINT64_C(1) << 10)
+#define ARCUS_FEATURE_CURVED_RK4 (UINT64_C(1) << 11)
+#define ARCUS_FEATURE_CURVED_DP45 (UINT64_C(1) << 12)
+#define ARCUS_FEATURE_CURVED_FIELD_LINEAR (UINT64_C(1) << 13)
+#define ARCUS_FEATURE_CURVED_FIELD_LINEAR_N2 (UINT64_C(1) << 14)
+#define ARCUS_FEATURE_CURVED_FIELD_LUNEBURG (UINT64_C(1) << 15)
+#define ARCUS_FEATURE_CURVED_FIELD_FISHEYE (UINT64_C(1) << 16)
+#define ARCUS_FEATURE_CURVED_FIELD_ATMOSPHERE (UINT64_C(1) << 17)
+#define ARCUS_FEATURE_CURVED_FIELD_GRID (UINT64_C(1) << 18)
+#define ARCUS_FEATURE_CURVED_BOX (UINT64_C(1) << 19)
+#define ARCUS_FEATURE_CURVED_RECORD_PATH (UINT64_C(1) << 20)
+#define ARCUS_FEATURE_CURVED_DISPERSION (UINT64_C(1) << 21) /* per-ray wavelengths, dispersive field */
 
 /* Advances count rays (origins, directions: count×3 doubles; directions need not be
  * unit length) through field.  wavelengths (count doubles, nm; may be NULL) gives each
@@ -190,24 +192,24 @@ typedef enum arcus_ray_failure {
  * ARCUS_ERROR_INVALID_RAYS, ARCUS_ERROR_PATH_OVERFLOW and ARCUS_ERROR_CANCELLED *job
  * holds every ray's result (the flagged rays are marked and the others are unharmed);
  * on any other status *job is NULL.                                                  */
-ARCUS_API arcus_status arcus_advance(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params* params,
-                                     size_t count, const double* origins, const double* directions,
-                                     const double* wavelengths, arcus_job_t** job);
+ARCUS_API arcus_status arcus_curved_advance(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params* params,
+                                            size_t count, const double* origins, const double* directions,
+                                            const double* wavelengths, arcus_job_t** job);
 
 /* The results of an advance job (another engine's job is ARCUS_ERROR_INVALID_ARGUMENT).
  * Any pointer may be NULL.  positions, directions: count×3 (unit directions);
  * steps: accepted steps; status: arcus_ray_status; lengths: arc length travelled.    */
-ARCUS_API arcus_status arcus_job_get_end_states(arcus_job_t* job, double* positions, double* directions,
-                                                uint64_t* steps, int32_t* status, double* lengths);
+ARCUS_API arcus_status arcus_job_get_curved_end_states(arcus_job_t* job, double* positions, double* directions,
+                                                       uint64_t* steps, int32_t* status, double* lengths);
 /* failures: count entries of arcus_ray_failure. */
-ARCUS_API arcus_status arcus_job_get_failures(arcus_job_t* job, int32_t* failures);
+ARCUS_API arcus_status arcus_job_get_curved_failures(arcus_job_t* job, int32_t* failures);
 /* Paths (record_path): total_points is the number of points kept for all rays.  Both
  * path calls return ARCUS_ERROR_INVALID_ARGUMENT for a job advanced without record_path. */
-ARCUS_API arcus_status arcus_job_get_path_size(arcus_job_t* job, size_t* total_points);
+ARCUS_API arcus_status arcus_job_get_curved_path_size(arcus_job_t* job, size_t* total_points);
 /* offsets: count+1 entries; ray i's points are points[offsets[i] .. offsets[i+1]) (×3).
  * needed: count entries, the points each ray's full path has (> kept on overflow);
  * either may be NULL. */
-ARCUS_API arcus_status arcus_job_get_paths(arcus_job_t* job, uint64_t* offsets, double* points, uint64_t* needed);
+ARCUS_API arcus_status arcus_job_get_curved_paths(arcus_job_t* job, uint64_t* offsets, double* points, uint64_t* needed);
 
 /* ---- curved scenes (arcus_scene.h; engine "curved") --------------------------------
  * A new reference to the scene's field (release it). */
@@ -220,10 +222,44 @@ ARCUS_API arcus_status arcus_scene_get_advance_params(arcus_scene_t* scene, arcu
 ARCUS_API arcus_status arcus_scene_get_ray_count(arcus_scene_t* scene, size_t* count);
 ARCUS_API arcus_status arcus_scene_get_rays(arcus_scene_t* scene, double* origins, double* directions,
                                             double* wavelengths, int32_t* has_wavelengths);
-/* Advances the scene's rays through its field with its settings (arcus_advance),
+/* Advances the scene's rays through its field with its settings (arcus_curved_advance),
  * reporting to `progress` (may be NULL). */
+ARCUS_API arcus_status arcus_curved_advance_scene(arcus_scene_t* scene, arcus_progress_callback progress, void* user,
+                                                  arcus_job_t** job);
+
+/* ---- spellings before arcus 0.10 (removed in 0.11; arcus_core.h, "Names") ----------- */
+#ifndef ARCUS_NO_DEPRECATED
+#define ARCUS_FEATURE_STRAIGHT ARCUS_FEATURE_CURVED_STRAIGHT
+#define ARCUS_FEATURE_EULER ARCUS_FEATURE_CURVED_EULER
+#define ARCUS_FEATURE_RK2 ARCUS_FEATURE_CURVED_RK2
+#define ARCUS_FEATURE_RK4 ARCUS_FEATURE_CURVED_RK4
+#define ARCUS_FEATURE_DP45 ARCUS_FEATURE_CURVED_DP45
+#define ARCUS_FEATURE_FIELD_LINEAR ARCUS_FEATURE_CURVED_FIELD_LINEAR
+#define ARCUS_FEATURE_FIELD_LINEAR_N2 ARCUS_FEATURE_CURVED_FIELD_LINEAR_N2
+#define ARCUS_FEATURE_FIELD_LUNEBURG ARCUS_FEATURE_CURVED_FIELD_LUNEBURG
+#define ARCUS_FEATURE_FIELD_FISHEYE ARCUS_FEATURE_CURVED_FIELD_FISHEYE
+#define ARCUS_FEATURE_FIELD_ATMOSPHERE ARCUS_FEATURE_CURVED_FIELD_ATMOSPHERE
+#define ARCUS_FEATURE_FIELD_GRID ARCUS_FEATURE_CURVED_FIELD_GRID
+#define ARCUS_FEATURE_BOX ARCUS_FEATURE_CURVED_BOX
+#define ARCUS_FEATURE_RECORD_PATH ARCUS_FEATURE_CURVED_RECORD_PATH
+#define ARCUS_FEATURE_DISPERSION ARCUS_FEATURE_CURVED_DISPERSION
+ARCUS_DEPRECATED("arcus_curved_advance")
+ARCUS_API arcus_status arcus_advance(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params* params,
+                                     size_t count, const double* origins, const double* directions,
+                                     const double* wavelengths, arcus_job_t** job);
+ARCUS_DEPRECATED("arcus_curved_advance_scene")
 ARCUS_API arcus_status arcus_scene_advance(arcus_scene_t* scene, arcus_progress_callback progress, void* user,
                                            arcus_job_t** job);
+ARCUS_DEPRECATED("arcus_job_get_curved_end_states")
+ARCUS_API arcus_status arcus_job_get_end_states(arcus_job_t* job, double* positions, double* directions,
+                                                uint64_t* steps, int32_t* status, double* lengths);
+ARCUS_DEPRECATED("arcus_job_get_curved_failures")
+ARCUS_API arcus_status arcus_job_get_failures(arcus_job_t* job, int32_t* failures);
+ARCUS_DEPRECATED("arcus_job_get_curved_path_size")
+ARCUS_API arcus_status arcus_job_get_path_size(arcus_job_t* job, size_t* total_points);
+ARCUS_DEPRECATED("arcus_job_get_curved_paths")
+ARCUS_API arcus_status arcus_job_get_paths(arcus_job_t* job, uint64_t* offsets, double* points, uint64_t* needed);
+#endif
 
 #ifdef __cplusplus
 }

@@ -7,7 +7,8 @@
  * the shared BVH and summed with their phases (interference); and, for spheres, our own
  * Lorenz–Mie with its Debye-series terms.  Include arcus.h.
  *
- * Units: metres for sizes, nanometres for wavelengths, degrees for angles.  Frame: the
+ * Units (arcus_core.h): metres for sizes, nanometres in vacuum for wavelengths, kelvin
+ * for temperatures, degrees for angles; the air around a particle has n = 1.  Frame: the
  * light travels along +z, its "horizontal" polarisation along x and "vertical" along y;
  * a scattering direction is (θ, φ) with θ from +z and φ from +x toward +y.  "Parallel"
  * and "perpendicular" are the scattered light's components along e_θ (in the
@@ -32,16 +33,17 @@ extern "C" {
 
 /* ---- refractive index --------------------------------------------------------- */
 typedef enum arcus_material {
-  ARCUS_MATERIAL_WATER = 0, /* IAPWS R9-97 at 1 atm; temperature_c applies            */
+  ARCUS_MATERIAL_WATER = 0, /* IAPWS R9-97 at 1 atm; temperature_k applies            */
   ARCUS_MATERIAL_ICE = 1,   /* ice Ih (data/rainbow/README.md gives the source)        */
   ARCUS_MATERIAL_FIXED = 2  /* refractive_index as given, at every wavelength          */
 } arcus_material;
 
-/* The real refractive index of `material` relative to the surrounding air (taken as
- * 1).  A wavelength or temperature outside the formulation's range is an error that
- * names it. */
-ARCUS_API arcus_status arcus_refractive_index(int32_t material, double wavelength_nm, double temperature_c,
-                                              double* n);
+/* The real refractive index of `material` at the vacuum wavelength `wavelength_nm` and
+ * `temperature_k` kelvin (water: 253.15-383.15 K), relative to the surrounding air,
+ * taken as 1 as the thesis does (§4.4.1.1; data/rainbow/README.md).  A wavelength or
+ * temperature outside the formulation's range is an error that names it. */
+ARCUS_API arcus_status arcus_rainbow_refractive_index(int32_t material, double wavelength_nm, double temperature_k,
+                                                      double* n);
 
 /* ---- particles ---------------------------------------------------------------- */
 typedef struct arcus_particle_s arcus_particle_t;
@@ -86,9 +88,9 @@ ARCUS_API arcus_status arcus_particle_get_info(arcus_particle_t* particle, arcus
 
 /* ---- casting (thesis §4.4.2-4.4.3.1) ------------------------------------------ */
 typedef struct arcus_rainbow_params {
-  double wavelength_nm;    /* in air                                                    */
+  double wavelength_nm;    /* in vacuum (the air around the drops is taken as n = 1)    */
   int32_t material;        /* arcus_material (water)                                    */
-  double temperature_c;    /* water's (20)                                              */
+  double temperature_k;    /* water's, kelvin (293.15)                                  */
   double refractive_index; /* ARCUS_MATERIAL_FIXED                                      */
   uint32_t grid;           /* rays per side of the cast grid (1000)                     */
   double alpha;            /* the grid's warp, eq. 4.27-4.28 (0.3; 1: uniform)           */
@@ -100,9 +102,12 @@ typedef struct arcus_rainbow_params {
                             * are kept (a table p(θ) at that φ, much faster); NaN: all  */
   arcus_progress_callback progress;
   void* progress_user;
+  /* Deprecated (0.9's °C field, removed in 0.11): NaN after arcus_rainbow_params_init;
+   * a finite value is used instead of temperature_k, converted (+273.15). */
+  double temperature_c;
 } arcus_rainbow_params;
 
-/* wavelength 550 nm, water at 20 °C, grid 1000, α 0.3, P = 3, edge rays, identity
+/* wavelength 550 nm, water at 293.15 K (20 °C), grid 1000, α 0.3, P = 3, edge rays, identity
  * rotation, every azimuth. */
 ARCUS_API arcus_status arcus_rainbow_params_init(arcus_rainbow_params* params);
 
@@ -135,14 +140,14 @@ ARCUS_API arcus_status arcus_job_get_rainbow_stats(arcus_job_t* job, arcus_rainb
  * rays, which stays finite and peaks where the wave does; 2 adds them by eq. 4.31 alone,
  * as the thesis does (the rays' intensity then peaks at the geometric caustic); 0 adds
  * their intensities (geometric optics). */
-ARCUS_API arcus_status arcus_job_rainbow_phase(arcus_job_t* job, size_t count, const double* theta_deg,
-                                               const double* phi_deg, int32_t coherent, double* parallel,
-                                               double* perpendicular, double* per_bounce);
+ARCUS_API arcus_status arcus_job_get_rainbow_phase(arcus_job_t* job, size_t count, const double* theta_deg,
+                                                   const double* phi_deg, int32_t coherent, double* parallel,
+                                                   double* perpendicular, double* per_bounce);
 /* The raw sums behind it (coherent = 1), per direction and term p: the four phasors
  * E_hθ, E_hφ, E_vθ, E_vφ (re, im) with their phases applied, summed over the patches
  * holding the direction, unnormalised [count × (P+1) × 8]. */
-ARCUS_API arcus_status arcus_job_rainbow_phasors(arcus_job_t* job, size_t count, const double* theta_deg,
-                                                 const double* phi_deg, double* phasors);
+ARCUS_API arcus_status arcus_job_get_rainbow_phasors(arcus_job_t* job, size_t count, const double* theta_deg,
+                                                     const double* phi_deg, double* phasors);
 
 /* The glints of a flat-faced mesh (smooth = 0): in one orientation every ray of one
  * sequence of faces leaves in one direction, so the light of such a particle is a set of
@@ -240,16 +245,39 @@ typedef struct arcus_mie_efficiencies {
  * either may be NULL], the phase function's parallel (|S2|²) and perpendicular (|S1|²)
  * halves for unpolarised light, whose sum integrates to 1 over the sphere [count each,
  * may be NULL], and the efficiencies (may be NULL). */
-ARCUS_API arcus_status arcus_mie(double radius, double wavelength_nm, double n_re, double n_im, size_t count,
-                                 const double* theta_deg, double* s1, double* s2, double* parallel,
-                                 double* perpendicular, arcus_mie_efficiencies* efficiencies);
+ARCUS_API arcus_status arcus_rainbow_mie(double radius, double wavelength_nm, double n_re, double n_im, size_t count,
+                                         const double* theta_deg, double* s1, double* s2, double* parallel,
+                                         double* perpendicular, arcus_mie_efficiencies* efficiencies);
 /* The Debye-series terms p = 0..max_p of the same amplitudes [count × (max_p + 1) × 2
  * each], and each term's phase function in Mie's normalisation (parallel and
  * perpendicular, count × (max_p + 1)); p = 0 is external reflection without
  * diffraction. */
+ARCUS_API arcus_status arcus_rainbow_mie_debye(double radius, double wavelength_nm, double n_re, double n_im,
+                                               uint32_t max_p, size_t count, const double* theta_deg, double* s1,
+                                               double* s2, double* parallel, double* perpendicular);
+
+/* ---- spellings before arcus 0.10 (removed in 0.11; arcus_core.h, "Names") ----------- */
+#ifndef ARCUS_NO_DEPRECATED
+/* temperature_c in °C (the old unit); converted to kelvin. */
+ARCUS_DEPRECATED("arcus_rainbow_refractive_index (temperature in kelvin)")
+ARCUS_API arcus_status arcus_refractive_index(int32_t material, double wavelength_nm, double temperature_c,
+                                              double* n);
+ARCUS_DEPRECATED("arcus_job_get_rainbow_phase")
+ARCUS_API arcus_status arcus_job_rainbow_phase(arcus_job_t* job, size_t count, const double* theta_deg,
+                                               const double* phi_deg, int32_t coherent, double* parallel,
+                                               double* perpendicular, double* per_bounce);
+ARCUS_DEPRECATED("arcus_job_get_rainbow_phasors")
+ARCUS_API arcus_status arcus_job_rainbow_phasors(arcus_job_t* job, size_t count, const double* theta_deg,
+                                                 const double* phi_deg, double* phasors);
+ARCUS_DEPRECATED("arcus_rainbow_mie")
+ARCUS_API arcus_status arcus_mie(double radius, double wavelength_nm, double n_re, double n_im, size_t count,
+                                 const double* theta_deg, double* s1, double* s2, double* parallel,
+                                 double* perpendicular, arcus_mie_efficiencies* efficiencies);
+ARCUS_DEPRECATED("arcus_rainbow_mie_debye")
 ARCUS_API arcus_status arcus_mie_debye(double radius, double wavelength_nm, double n_re, double n_im,
                                        uint32_t max_p, size_t count, const double* theta_deg, double* s1,
                                        double* s2, double* parallel, double* perpendicular);
+#endif
 
 #ifdef __cplusplus
 }

@@ -40,8 +40,8 @@ extern "C" {
                              ARCUS_TECHNIQUE_UNDERSAMPLE | ARCUS_TECHNIQUE_PATH_CACHE)
 
 /* Kernel features of render jobs: bits 24-31 of arcus_features. */
-#define ARCUS_FEATURE_GEOMETRY (UINT64_C(1) << 24)     /* rays stop on the scene's primitives */
-#define ARCUS_FEATURE_RECORD_STATE (UINT64_C(1) << 25) /* paths keep the whole state (cache) */
+#define ARCUS_FEATURE_RENDER_GEOMETRY (UINT64_C(1) << 24)     /* rays stop on the scene's primitives */
+#define ARCUS_FEATURE_RENDER_RECORD_STATE (UINT64_C(1) << 25) /* paths keep the whole state (cache) */
 
 typedef struct arcus_renderer_s arcus_renderer_t;
 
@@ -91,21 +91,36 @@ typedef struct arcus_render_stats {
 } arcus_render_stats;
 ARCUS_API arcus_status arcus_job_get_render_stats(arcus_job_t* job, arcus_render_stats* stats);
 
-ARCUS_API arcus_status arcus_job_get_image_size(arcus_job_t* job, uint32_t* width, uint32_t* height);
+ARCUS_API arcus_status arcus_job_get_render_image_size(arcus_job_t* job, uint32_t* width, uint32_t* height);
 /* Linear RGB radiance, width × height × 3 floats, top row first (spectral scenes:
  * converted through the CIE 1931 colour-matching functions to linear sRGB). */
-ARCUS_API arcus_status arcus_job_get_image(arcus_job_t* job, float* rgb);
+ARCUS_API arcus_status arcus_job_get_render_image(arcus_job_t* job, float* rgb);
 /* Per pixel (any pointer may be NULL): the primary ray's hit point (× 3; NaN for
  * none), the object hit (its index in the scene's "objects", -1 for none) and the
  * primitive within it (triangle index, 0 for a sphere or disc), the arc length to the
  * hit (or to where the ray left the scene), its integrator steps and intersection
  * tests.  Spectral scenes: the figures of the first wavelength. */
-ARCUS_API arcus_status arcus_job_get_hits(arcus_job_t* job, double* points, int32_t* objects, int32_t* primitives,
-                                          double* distances, uint32_t* steps, uint32_t* tests);
+ARCUS_API arcus_status arcus_job_get_render_hits(arcus_job_t* job, double* points, int32_t* objects, int32_t* primitives,
+                                                 double* distances, uint32_t* steps, uint32_t* tests);
 /* Writes the image: an OpenEXR file (linear RGB, plus the channels "distance",
  * "steps" and "tests") and/or a PNG (sRGB, the scene's exposure); either path may be
  * NULL. */
+ARCUS_API arcus_status arcus_job_write_render_image(arcus_job_t* job, const char* exr_path, const char* png_path);
+
+/* ---- spellings before arcus 0.10 (removed in 0.11; arcus_core.h, "Names") ----------- */
+#ifndef ARCUS_NO_DEPRECATED
+#define ARCUS_FEATURE_GEOMETRY ARCUS_FEATURE_RENDER_GEOMETRY
+#define ARCUS_FEATURE_RECORD_STATE ARCUS_FEATURE_RENDER_RECORD_STATE
+ARCUS_DEPRECATED("arcus_job_get_render_image_size")
+ARCUS_API arcus_status arcus_job_get_image_size(arcus_job_t* job, uint32_t* width, uint32_t* height);
+ARCUS_DEPRECATED("arcus_job_get_render_image")
+ARCUS_API arcus_status arcus_job_get_image(arcus_job_t* job, float* rgb);
+ARCUS_DEPRECATED("arcus_job_get_render_hits")
+ARCUS_API arcus_status arcus_job_get_hits(arcus_job_t* job, double* points, int32_t* objects, int32_t* primitives,
+                                          double* distances, uint32_t* steps, uint32_t* tests);
+ARCUS_DEPRECATED("arcus_job_write_render_image")
 ARCUS_API arcus_status arcus_job_write_image(arcus_job_t* job, const char* exr_path, const char* png_path);
+#endif
 
 #ifdef __cplusplus
 }

@@ -7,7 +7,7 @@
  * file is an error whose message names the file and the key path ("scene.json:
  * $.medium.radius: expected a number").  The engine a scene is for follows from its
  * keys; each engine's header has the calls that use a scene (arcus_curved.h:
- * arcus_scene_get_field, arcus_scene_advance, ...).
+ * arcus_scene_get_field, arcus_curved_advance_scene, ...).
  */
 #ifndef ARCUS_SCENE_H
 #define ARCUS_SCENE_H

@@ -111,7 +111,7 @@ ARCUS_INLINE void ray_store(ray6 r, __global REAL* p, size_t v, size_t stride) {
 #define GEOMETRY_PARAMS
 #endif
 
-__kernel void arcus_advance(__global const REAL* rays_in, __global const REAL* wavelengths, __global REAL* state,
+__kernel void arcus_curved_advance(__global const REAL* rays_in, __global const REAL* wavelengths, __global REAL* state,
                             __global int* istate, __global REAL* path, const field_desc field,
                             __global const REAL* field_data, const advance_desc job GEOMETRY_PARAMS) {
   const size_t first_vector = get_global_id(0) * ARCUS_GROUPS;

@@ -291,7 +291,7 @@ bool run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
     dev.path = std::make_unique<DeviceBuffer>(ctx, static_cast<size_t>(path_bytes), "record_path");
   DeviceBuffer* data = field_data_on_device(ctx, field, single);
 
-  KernelCall kernel(program, "arcus_advance");
+  KernelCall kernel(program, "arcus_curved_advance");
   kernel.set(0, dev.input.get());
   kernel.set(1, dev.wavelengths.get());
   kernel.set(2, dev.state.get());
@@ -425,12 +425,12 @@ namespace {
 
 arcus_features field_feature(int32_t kind) {
   switch (kind) {
-    case ARCUS_KIND_LINEAR: return ARCUS_FEATURE_FIELD_LINEAR;
-    case ARCUS_KIND_LINEAR_N2: return ARCUS_FEATURE_FIELD_LINEAR_N2;
-    case ARCUS_KIND_LUNEBURG: return ARCUS_FEATURE_FIELD_LUNEBURG;
-    case ARCUS_KIND_FISHEYE: return ARCUS_FEATURE_FIELD_FISHEYE;
-    case ARCUS_KIND_ATMOSPHERE: return ARCUS_FEATURE_FIELD_ATMOSPHERE;
-    case ARCUS_KIND_GRID: return ARCUS_FEATURE_FIELD_GRID;
+    case ARCUS_KIND_LINEAR: return ARCUS_FEATURE_CURVED_FIELD_LINEAR;
+    case ARCUS_KIND_LINEAR_N2: return ARCUS_FEATURE_CURVED_FIELD_LINEAR_N2;
+    case ARCUS_KIND_LUNEBURG: return ARCUS_FEATURE_CURVED_FIELD_LUNEBURG;
+    case ARCUS_KIND_FISHEYE: return ARCUS_FEATURE_CURVED_FIELD_FISHEYE;
+    case ARCUS_KIND_ATMOSPHERE: return ARCUS_FEATURE_CURVED_FIELD_ATMOSPHERE;
+    case ARCUS_KIND_GRID: return ARCUS_FEATURE_CURVED_FIELD_GRID;
     default: return 0;  // constant: no field code at all
   }
 }
@@ -471,13 +471,13 @@ Plan plan_advance(const arcus_advance_params& p, const arcus_field_desc_d& field
   plan.dp45 = p.method == ARCUS_METHOD_DP45 && !plan.straight;
   plan.single = p.precision == ARCUS_PRECISION_FLOAT;
   plan.dispersion = with_wavelengths && dispersive(field);
-  static const arcus_features kMethods[] = {ARCUS_FEATURE_EULER, ARCUS_FEATURE_RK2, ARCUS_FEATURE_RK4,
-                                            ARCUS_FEATURE_DP45};
-  plan.features = plan.straight ? ARCUS_FEATURE_STRAIGHT : kMethods[p.method] | field_feature(field.kind);
-  if (p.use_box) plan.features |= ARCUS_FEATURE_BOX;
-  if (p.record_path) plan.features |= ARCUS_FEATURE_RECORD_PATH;
+  static const arcus_features kMethods[] = {ARCUS_FEATURE_CURVED_EULER, ARCUS_FEATURE_CURVED_RK2, ARCUS_FEATURE_CURVED_RK4,
+                                            ARCUS_FEATURE_CURVED_DP45};
+  plan.features = plan.straight ? ARCUS_FEATURE_CURVED_STRAIGHT : kMethods[p.method] | field_feature(field.kind);
+  if (p.use_box) plan.features |= ARCUS_FEATURE_CURVED_BOX;
+  if (p.record_path) plan.features |= ARCUS_FEATURE_CURVED_RECORD_PATH;
   if (plan.single) plan.features |= ARCUS_FEATURE_FLOAT;
-  if (plan.dispersion) plan.features |= ARCUS_FEATURE_DISPERSION;
+  if (plan.dispersion) plan.features |= ARCUS_FEATURE_CURVED_DISPERSION;
   // A straight job is one step: groups would only add padding.
   plan.layout = choose_layout(entry, plan.straight ? 1 : plan.dp45 ? kCpuGroupsDp45 : kCpuGroupsFixed);
   return plan;

@@ -1,4 +1,4 @@
-// Advancing a batch of rays through a field (arcus_advance): the job object, its
+// Advancing a batch of rays through a field (arcus_curved_advance): the job object, its
 // planning (features, layout, step counts) and its run in slices on the device.
 #pragma once
 
@@ -86,7 +86,7 @@ struct AdvanceExtension {
   std::function<void(std::unique_ptr<DeviceBuffer> paths, uint32_t capacity, size_t stride)> take_paths;
 };
 
-// The body of arcus_advance: plans, builds (or reuses) the kernel, runs it in slices
+// The body of arcus_curved_advance: plans, builds (or reuses) the kernel, runs it in slices
 // and fills a new job.  Returns SUCCESS or a partial status (INVALID_RAYS,
 // PATH_OVERFLOW, CANCELLED) with *message set; throws on other errors.
 arcus_status advance(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params& params, size_t count,

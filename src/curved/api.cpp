@@ -147,9 +147,9 @@ arcus_status arcus_advance_params_init(arcus_advance_params* params) {
   });
 }
 
-arcus_status arcus_advance(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params* params,
-                           size_t count, const double* origins, const double* directions, const double* wavelengths,
-                           arcus_job_t** job) {
+arcus_status arcus_curved_advance(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params* params,
+                                  size_t count, const double* origins, const double* directions, const double* wavelengths,
+                                  arcus_job_t** job) {
   return on<arcus_context_s>(ctx, arcus::kContextHandle, "ctx", [&](arcus_context_s* c, std::string* message) {
     require_pointer(job, "job");
     *job = nullptr;
@@ -159,8 +159,8 @@ arcus_status arcus_advance(arcus_context_t* ctx, arcus_field_t* field, const arc
   });
 }
 
-arcus_status arcus_job_get_end_states(arcus_job_t* job, double* positions, double* directions, uint64_t* steps,
-                                      int32_t* status, double* lengths) {
+arcus_status arcus_job_get_curved_end_states(arcus_job_t* job, double* positions, double* directions, uint64_t* steps,
+                                             int32_t* status, double* lengths) {
   return on_advance_job(job, [&](AdvanceJob* j) {
     copy_out(j->positions, positions);
     copy_out(j->directions, directions);
@@ -170,14 +170,14 @@ arcus_status arcus_job_get_end_states(arcus_job_t* job, double* positions, doubl
   });
 }
 
-arcus_status arcus_job_get_failures(arcus_job_t* job, int32_t* failures) {
+arcus_status arcus_job_get_curved_failures(arcus_job_t* job, int32_t* failures) {
   return on_advance_job(job, [&](AdvanceJob* j) {
     require_pointer(failures, "failures");
     copy_out(j->failures, failures);
   });
 }
 
-arcus_status arcus_job_get_path_size(arcus_job_t* job, size_t* total_points) {
+arcus_status arcus_job_get_curved_path_size(arcus_job_t* job, size_t* total_points) {
   return on_advance_job(job, [&](AdvanceJob* j) {
     require_pointer(total_points, "total_points");
     require(!j->path_offsets.empty(), "job: the job was advanced without record_path");
@@ -185,7 +185,7 @@ arcus_status arcus_job_get_path_size(arcus_job_t* job, size_t* total_points) {
   });
 }
 
-arcus_status arcus_job_get_paths(arcus_job_t* job, uint64_t* offsets, double* points, uint64_t* needed) {
+arcus_status arcus_job_get_curved_paths(arcus_job_t* job, uint64_t* offsets, double* points, uint64_t* needed) {
   return on_advance_job(job, [&](AdvanceJob* j) {
     require(!j->path_offsets.empty(), "job: the job was advanced without record_path");
     copy_out(j->path_offsets, offsets);

@@ -1,5 +1,5 @@
 // Curved-light scenes: a scene file's medium, rays and integrator settings made into a
-// field and the arguments of arcus_advance (arcus_curved.h, "curved scenes").
+// field and the arguments of arcus_curved_advance (arcus_curved.h, "curved scenes").
 #include <memory>
 #include <string>
 
@@ -89,8 +89,8 @@ arcus_status arcus_scene_get_rays(arcus_scene_t* scene, double* origins, double*
   });
 }
 
-arcus_status arcus_scene_advance(arcus_scene_t* scene, arcus_progress_callback progress, void* user,
-                                 arcus_job_t** job) {
+arcus_status arcus_curved_advance_scene(arcus_scene_t* scene, arcus_progress_callback progress, void* user,
+                                        arcus_job_t** job) {
   return arcus::curved::on_curved_scene(scene, [&](CurvedScene* s, std::string* message) {
     require_pointer(job, "job");
     *job = nullptr;

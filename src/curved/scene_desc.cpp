@@ -154,7 +154,7 @@ namespace {
 
 double wavelength(const Node& node) {
   const double w = node.number();
-  // Ciddor's dispersion covers these; arcus_advance would flag the ray otherwise.
+  // Ciddor's dispersion covers these; arcus_curved_advance would flag the ray otherwise.
   if (!(w >= ARCUS_MIN_WAVELENGTH && w <= ARCUS_MAX_WAVELENGTH))
     node.fail("expected a wavelength in nm within 300..1690, got " + number(w));
   return w;

@@ -47,9 +47,18 @@ arcus_status create_particle(arcus_context_t* ctx, arcus_particle_t** out, Make&
   });
 }
 
-double index_of(int32_t material, double wavelength_nm, double temperature_c, double fixed) {
+// The public API takes kelvin (arcus_core.h, "Units"); the formulation is written in °C.
+constexpr double kCelsiusZero = 273.15;
+
+double index_of(int32_t material, double wavelength_nm, double temperature_k, double fixed) {
   switch (material) {
-    case ARCUS_MATERIAL_WATER: return rainbow::water_index(wavelength_nm, temperature_c);
+    case ARCUS_MATERIAL_WATER: {
+      const double lo = rainbow::kWaterMinC + kCelsiusZero, hi = rainbow::kWaterMaxC + kCelsiusZero;
+      require(temperature_k >= lo && temperature_k <= hi,
+              "temperature_k must lie in [" + number(lo) + ", " + number(hi) +
+                  "] K (IAPWS R9-97, liquid water at 101.325 kPa), got " + number(temperature_k));
+      return rainbow::water_index(wavelength_nm, temperature_k - kCelsiusZero);
+    }
     case ARCUS_MATERIAL_ICE: return rainbow::ice_index(wavelength_nm);
     case ARCUS_MATERIAL_FIXED:
       require(std::isfinite(fixed) && fixed > 1, "refractive_index must be finite and above 1, got " + number(fixed));
@@ -111,10 +120,10 @@ void copy_complex(const std::vector<std::complex<double>>& from, double* out, si
 
 extern "C" {
 
-arcus_status arcus_refractive_index(int32_t material, double wavelength_nm, double temperature_c, double* n) {
+arcus_status arcus_rainbow_refractive_index(int32_t material, double wavelength_nm, double temperature_k, double* n) {
   return without_context([&] {
     require_pointer(n, "n");
-    *n = index_of(material, wavelength_nm, temperature_c, std::numeric_limits<double>::quiet_NaN());
+    *n = index_of(material, wavelength_nm, temperature_k, std::numeric_limits<double>::quiet_NaN());
   });
 }
 
@@ -159,7 +168,8 @@ arcus_status arcus_rainbow_params_init(arcus_rainbow_params* params) {
     *params = arcus_rainbow_params{};
     params->wavelength_nm = 550;
     params->material = ARCUS_MATERIAL_WATER;
-    params->temperature_c = 20;
+    params->temperature_k = 293.15;
+    params->temperature_c = std::numeric_limits<double>::quiet_NaN();  // the deprecated field: unset
     params->refractive_index = std::numeric_limits<double>::quiet_NaN();
     params->grid = 1000;
     params->alpha = 0.3;
@@ -179,7 +189,9 @@ arcus_status arcus_rainbow_cast(arcus_context_t* ctx, arcus_particle_t* particle
     auto* p = object_of<arcus_particle_s>(ctx, particle, arcus::rainbow::kParticleHandle, "particle");
     rainbow::CastParams cp;
     cp.wavelength_nm = params->wavelength_nm;
-    cp.n = index_of(params->material, params->wavelength_nm, params->temperature_c, params->refractive_index);
+    const double temperature_k =  // a finite deprecated °C field comes from code written for 0.9
+        std::isfinite(params->temperature_c) ? params->temperature_c + kCelsiusZero : params->temperature_k;
+    cp.n = index_of(params->material, params->wavelength_nm, temperature_k, params->refractive_index);
     // unsigned to int without wrapping; check_cast names what is out of range
     cp.grid = static_cast<int>(std::min<uint32_t>(params->grid, INT32_MAX));
     cp.alpha = params->alpha;
@@ -204,8 +216,8 @@ arcus_status arcus_job_get_rainbow_stats(arcus_job_t* job, arcus_rainbow_stats* 
   });
 }
 
-arcus_status arcus_job_rainbow_phase(arcus_job_t* job, size_t count, const double* theta_deg, const double* phi_deg,
-                                     int32_t coherent, double* parallel, double* perpendicular, double* per_bounce) {
+arcus_status arcus_job_get_rainbow_phase(arcus_job_t* job, size_t count, const double* theta_deg, const double* phi_deg,
+                                         int32_t coherent, double* parallel, double* perpendicular, double* per_bounce) {
   return on_rainbow_job(job, [&](rainbow::RainbowJob* j) {
     require(coherent >= 0 && coherent <= 2,
             "coherent must be 0 (intensities), 1 (phasors, uniform at caustics) or 2 (phasors, eq. 4.31 "
@@ -239,8 +251,8 @@ arcus_status arcus_job_get_rainbow_glints(arcus_job_t* job, size_t* count, uint3
   });
 }
 
-arcus_status arcus_job_rainbow_phasors(arcus_job_t* job, size_t count, const double* theta_deg, const double* phi_deg,
-                                       double* phasors) {
+arcus_status arcus_job_get_rainbow_phasors(arcus_job_t* job, size_t count, const double* theta_deg, const double* phi_deg,
+                                           double* phasors) {
   return on_rainbow_job(job, [&](rainbow::RainbowJob* j) {
     require_pointer(phasors, "phasors");
     const std::vector<double> dirs = query_directions(*j, count, theta_deg, phi_deg);
@@ -251,9 +263,9 @@ arcus_status arcus_job_rainbow_phasors(arcus_job_t* job, size_t count, const dou
   });
 }
 
-arcus_status arcus_mie(double radius, double wavelength_nm, double n_re, double n_im, size_t count,
-                       const double* theta_deg, double* s1, double* s2, double* parallel, double* perpendicular,
-                       arcus_mie_efficiencies* efficiencies) {
+arcus_status arcus_rainbow_mie(double radius, double wavelength_nm, double n_re, double n_im, size_t count,
+                               const double* theta_deg, double* s1, double* s2, double* parallel, double* perpendicular,
+                               arcus_mie_efficiencies* efficiencies) {
   return without_context([&] {
     const MieInput in = mie_input(radius, wavelength_nm, n_re, n_im, count, theta_deg);
     const rainbow::mie::Result r = rainbow::mie::scatter(in.x, in.m, in.mu);
@@ -266,9 +278,9 @@ arcus_status arcus_mie(double radius, double wavelength_nm, double n_re, double 
   });
 }
 
-arcus_status arcus_mie_debye(double radius, double wavelength_nm, double n_re, double n_im, uint32_t max_p,
-                             size_t count, const double* theta_deg, double* s1, double* s2, double* parallel,
-                             double* perpendicular) {
+arcus_status arcus_rainbow_mie_debye(double radius, double wavelength_nm, double n_re, double n_im, uint32_t max_p,
+                                     size_t count, const double* theta_deg, double* s1, double* s2, double* parallel,
+                                     double* perpendicular) {
   return without_context([&] {
     require(max_p <= 1000, "max_p must be 0 to 1000, got " + std::to_string(max_p));
     const MieInput in = mie_input(radius, wavelength_nm, n_re, n_im, count, theta_deg);

@@ -65,7 +65,7 @@ std::vector<double> query(arcus_context_t* ctx, RainbowJob& job, const std::vect
                           bool uniform);
 
 // The phase function of eq. 4.32-4.34 for unpolarised light from the query's sums,
-// normalised over p = 0..P (arcus_job_rainbow_phase).
+// normalised over p = 0..P (arcus_job_get_rainbow_phase).
 struct Phase {
   std::vector<double> parallel, perpendicular, per_bounce;  // per_bounce: count × terms
 };

@@ -117,22 +117,22 @@ arcus_status arcus_job_get_render_stats(arcus_job_t* job, arcus_render_stats* st
   });
 }
 
-arcus_status arcus_job_get_image_size(arcus_job_t* job, uint32_t* width, uint32_t* height) {
+arcus_status arcus_job_get_render_image_size(arcus_job_t* job, uint32_t* width, uint32_t* height) {
   return on_render_job(job, [&](RenderJob* j) {
     if (width) *width = j->width;
     if (height) *height = j->height;
   });
 }
 
-arcus_status arcus_job_get_image(arcus_job_t* job, float* rgb) {
+arcus_status arcus_job_get_render_image(arcus_job_t* job, float* rgb) {
   return on_render_job(job, [&](RenderJob* j) {
     require_pointer(rgb, "rgb");
     copy_out(j->rgb, rgb);
   });
 }
 
-arcus_status arcus_job_get_hits(arcus_job_t* job, double* points, int32_t* objects, int32_t* primitives,
-                                double* distances, uint32_t* steps, uint32_t* tests) {
+arcus_status arcus_job_get_render_hits(arcus_job_t* job, double* points, int32_t* objects, int32_t* primitives,
+                                       double* distances, uint32_t* steps, uint32_t* tests) {
   return on_render_job(job, [&](RenderJob* j) {
     copy_out(j->points, points);
     copy_out(j->objects, objects);
@@ -143,7 +143,7 @@ arcus_status arcus_job_get_hits(arcus_job_t* job, double* points, int32_t* objec
   });
 }
 
-arcus_status arcus_job_write_image(arcus_job_t* job, const char* exr_path, const char* png_path) {
+arcus_status arcus_job_write_render_image(arcus_job_t* job, const char* exr_path, const char* png_path) {
   return on_render_job(job, [&](RenderJob* j) {
     arcus::image::Image img;
     img.width = static_cast<int>(j->width);

@@ -7,8 +7,8 @@ namespace arcus::render {
 namespace {
 
 const FeatureTable kTable{"render",
-                          {{ARCUS_FEATURE_GEOMETRY, "GEOMETRY", "-D ARCUS_USE_GEOMETRY"},
-                           {ARCUS_FEATURE_RECORD_STATE, "RECORD_STATE", "-D ARCUS_USE_RECORD_STATE"}}};
+                          {{ARCUS_FEATURE_RENDER_GEOMETRY, "RENDER_GEOMETRY", "-D ARCUS_USE_GEOMETRY"},
+                           {ARCUS_FEATURE_RENDER_RECORD_STATE, "RENDER_RECORD_STATE", "-D ARCUS_USE_RECORD_STATE"}}};
 const FeatureTableEntry kRegistered(&kTable);
 
 const KernelSource kTrace{"render/trace",

@@ -104,7 +104,7 @@ TraceOutput run_trace(arcus_context_t* ctx, RenderScene* scene, arcus_advance_pa
   std::vector<int32_t> hit_ints;
   size_t stride_seen = 0;
   curved::AdvanceExtension ext;
-  ext.features = ARCUS_FEATURE_GEOMETRY | (paths ? ARCUS_FEATURE_RECORD_STATE : 0);
+  ext.features = ARCUS_FEATURE_RENDER_GEOMETRY | (paths ? ARCUS_FEATURE_RENDER_RECORD_STATE : 0);
   ext.source = &trace_source();
   ext.record_components = DevicePaths::kReals;
   ext.set_args = [&](KernelCall& kernel, unsigned arg, size_t stride, bool is_single) {
@@ -193,7 +193,7 @@ struct WalkProgram {
 WalkProgram walk_program(arcus_context_t* ctx, RenderScene* scene, const arcus_advance_params& p) {
   WalkProgram w{curved::plan_advance(p, scene->field->desc, scene->field->data, ctx->info, ctx->runtime->entry(), false),
                 {}};
-  w.program = ctx->runtime->program(trace_source(), w.plan.features | ARCUS_FEATURE_GEOMETRY, w.plan.layout);
+  w.program = ctx->runtime->program(trace_source(), w.plan.features | ARCUS_FEATURE_RENDER_GEOMETRY, w.plan.layout);
   return w;
 }
 
@@ -268,7 +268,7 @@ TraceOutput walk_in(arcus_context_t* ctx, RenderScene* scene, const arcus_advanc
   GeometryArgs geometry;
   geometry.set(ctx, scene, single, kernel, 15, stride, count, predictions, occlusion, paths.from_surface);
   TraceOutput out;
-  out.features = plan.features | ARCUS_FEATURE_GEOMETRY;
+  out.features = plan.features | ARCUS_FEATURE_RENDER_GEOMETRY;
   out.stats.kernel_seconds = kernel.run(ctx, items);
   out.stats.launches = 1;
 

@@ -27,21 +27,21 @@ void check_particle(const Node& p) {
   }
   switch (kind) {
     case Kind::sphere:
-      p.expect_object({"kind", "radius", "method", "material", "rotation", "temperature"});
+      p.expect_object({"kind", "radius", "method", "material", "rotation", "temperature_k", "temperature"});
       p.member("radius").number();
       if (auto v = p.find("method")) v->choice<int>({{"rays", 0}, {"mie", 1}});
       break;
     case Kind::raindrop:
-      p.expect_object({"kind", "diameter", "material", "rotation", "temperature"});
+      p.expect_object({"kind", "diameter", "material", "rotation", "temperature_k", "temperature"});
       p.member("diameter").number();
       break;
     default:
-      p.expect_object({"kind", "path", "scale", "smooth", "material", "rotation", "temperature"});
+      p.expect_object({"kind", "path", "scale", "smooth", "material", "rotation", "temperature_k", "temperature"});
       p.member("path").string();
       p.check_numbers({"scale"});
       if (auto v = p.find("smooth")) v->boolean();
   }
-  p.check_numbers({"temperature"});
+  p.check_numbers({"temperature_k", "temperature"});  // temperature: °C, the spelling of 0.9
   if (auto v = p.find("material")) v->choice<int>({{"water", 0}, {"ice", 1}});
   if (auto v = p.find("rotation"); v && !v->is_null()) {
     const std::vector<Node> rows = v->elements();

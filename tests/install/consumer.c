@@ -29,11 +29,11 @@ int main(void) {
   double origins[4 * 3] = {0}, directions[4 * 3] = {0};
   for (int i = 0; i < 4; ++i) directions[3 * i] = 1.0, directions[3 * i + 1] = 0.1 * i;
   arcus_job_t* job = NULL;
-  if (check(arcus_advance(ctx, field, &params, 4, origins, directions, NULL, &job), "arcus_advance", ctx)) return 1;
+  if (check(arcus_curved_advance(ctx, field, &params, 4, origins, directions, NULL, &job), "arcus_curved_advance", ctx)) return 1;
   double end[4 * 3];
   int32_t status[4];
   double lengths[4];
-  if (check(arcus_job_get_end_states(job, end, NULL, NULL, status, lengths), "arcus_job_get_end_states", ctx)) return 1;
+  if (check(arcus_job_get_curved_end_states(job, end, NULL, NULL, status, lengths), "arcus_job_get_curved_end_states", ctx)) return 1;
   int bad = 0;
   for (int i = 0; i < 4; ++i) {
     printf("ray %d: status %d, end (%.6f, %.6f, %.6f), length %.6f\n", i, status[i], end[3 * i], end[3 * i + 1],

@@ -81,7 +81,7 @@ TEST(DeviceBuffer, AFieldsDataStaysOnTheDeviceBetweenJobs) {
   uint64_t after_first = 0;
   for (int k = 0; k < 2; ++k) {
     arcus_job_t* job = nullptr;
-    ASSERT_EQ(arcus_advance(ctx, field, &p, 1, o, d, nullptr, &job), ARCUS_SUCCESS);
+    ASSERT_EQ(arcus_curved_advance(ctx, field, &p, 1, o, d, nullptr, &job), ARCUS_SUCCESS);
     arcus_job_release(job);
     const arcus::DeviceBuffer* data = field->device_data[0].get();
     ASSERT_NE(data, nullptr);
@@ -108,11 +108,11 @@ TEST(DeviceSupport, DoubleOnADeviceWithoutFp64IsUnsupported) {
   arcus_advance_params p;
   arcus_advance_params_init(&p);
   arcus_job_t* job = nullptr;
-  EXPECT_EQ(arcus_advance(ctx, field, &p, 1, o, d, nullptr, &job), ARCUS_ERROR_UNSUPPORTED);
+  EXPECT_EQ(arcus_curved_advance(ctx, field, &p, 1, o, d, nullptr, &job), ARCUS_ERROR_UNSUPPORTED);
   EXPECT_EQ(job, nullptr);
   EXPECT_NE(std::string(arcus_context_last_error(ctx)).find("cl_khr_fp64"), std::string::npos);
   p.precision = ARCUS_PRECISION_FLOAT;
-  EXPECT_EQ(arcus_advance(ctx, field, &p, 1, o, d, nullptr, &job), ARCUS_SUCCESS);
+  EXPECT_EQ(arcus_curved_advance(ctx, field, &p, 1, o, d, nullptr, &job), ARCUS_SUCCESS);
   arcus_job_release(job);
   arcus_field_release(field);
 }

@@ -78,30 +78,30 @@ TEST(Planning, AJobCompilesOnlyTheFeaturesItCallsFor) {
   const auto atm = arcus::curved::atmosphere(a);
   // A constant field: the straight segment, no integrator, no field code, one group.
   const auto straight = plan(arcus::curved::constant(1.33), params(ARCUS_METHOD_DP45));
-  EXPECT_EQ(straight.features, ARCUS_FEATURE_STRAIGHT);
+  EXPECT_EQ(straight.features, ARCUS_FEATURE_CURVED_STRAIGHT);
   EXPECT_EQ(straight.layout.groups, 1u);
-  EXPECT_EQ(plan(lin, params(ARCUS_METHOD_RK4)).features, ARCUS_FEATURE_RK4 | ARCUS_FEATURE_FIELD_LINEAR);
+  EXPECT_EQ(plan(lin, params(ARCUS_METHOD_RK4)).features, ARCUS_FEATURE_CURVED_RK4 | ARCUS_FEATURE_CURVED_FIELD_LINEAR);
   EXPECT_EQ(plan(lin, params(ARCUS_METHOD_RK4)).layout.groups, 4u);
   EXPECT_EQ(plan(lin, params(ARCUS_METHOD_DP45)).layout.groups, 2u);
   // Each field kind has its own bit, as it has its own program.
   EXPECT_EQ(plan(arcus::curved::luneburg(c, 1.0), params(ARCUS_METHOD_EULER)).features,
-            ARCUS_FEATURE_EULER | ARCUS_FEATURE_FIELD_LUNEBURG);
+            ARCUS_FEATURE_CURVED_EULER | ARCUS_FEATURE_CURVED_FIELD_LUNEBURG);
   EXPECT_EQ(plan(arcus::curved::fisheye(c, 1.0, 1.0), params(ARCUS_METHOD_RK2)).features,
-            ARCUS_FEATURE_RK2 | ARCUS_FEATURE_FIELD_FISHEYE);
+            ARCUS_FEATURE_CURVED_RK2 | ARCUS_FEATURE_CURVED_FIELD_FISHEYE);
   EXPECT_EQ(plan(arcus::curved::linear_n2(1.0, g), params(ARCUS_METHOD_RK2)).features,
-            ARCUS_FEATURE_RK2 | ARCUS_FEATURE_FIELD_LINEAR_N2);
+            ARCUS_FEATURE_CURVED_RK2 | ARCUS_FEATURE_CURVED_FIELD_LINEAR_N2);
   // Wavelengths compile dispersion only for a dispersive field.
   EXPECT_EQ(plan(atm, params(ARCUS_METHOD_DP45), true).features,
-            ARCUS_FEATURE_DP45 | ARCUS_FEATURE_FIELD_ATMOSPHERE | ARCUS_FEATURE_DISPERSION);
-  EXPECT_EQ(plan(lin, params(ARCUS_METHOD_DP45), true).features, ARCUS_FEATURE_DP45 | ARCUS_FEATURE_FIELD_LINEAR);
-  EXPECT_EQ(plan(atm, params(ARCUS_METHOD_DP45), false).features, ARCUS_FEATURE_DP45 | ARCUS_FEATURE_FIELD_ATMOSPHERE);
+            ARCUS_FEATURE_CURVED_DP45 | ARCUS_FEATURE_CURVED_FIELD_ATMOSPHERE | ARCUS_FEATURE_CURVED_DISPERSION);
+  EXPECT_EQ(plan(lin, params(ARCUS_METHOD_DP45), true).features, ARCUS_FEATURE_CURVED_DP45 | ARCUS_FEATURE_CURVED_FIELD_LINEAR);
+  EXPECT_EQ(plan(atm, params(ARCUS_METHOD_DP45), false).features, ARCUS_FEATURE_CURVED_DP45 | ARCUS_FEATURE_CURVED_FIELD_ATMOSPHERE);
   arcus_advance_params p = params(ARCUS_METHOD_EULER);
   p.use_box = 1;
   p.box_max[0] = p.box_max[1] = p.box_max[2] = 1;
   p.record_path = 1;
   p.precision = ARCUS_PRECISION_FLOAT;
-  EXPECT_EQ(plan(lin, p).features, ARCUS_FEATURE_FLOAT | ARCUS_FEATURE_EULER | ARCUS_FEATURE_FIELD_LINEAR |
-                                       ARCUS_FEATURE_BOX | ARCUS_FEATURE_RECORD_PATH);
+  EXPECT_EQ(plan(lin, p).features, ARCUS_FEATURE_FLOAT | ARCUS_FEATURE_CURVED_EULER | ARCUS_FEATURE_CURVED_FIELD_LINEAR |
+                                       ARCUS_FEATURE_CURVED_BOX | ARCUS_FEATURE_CURVED_RECORD_PATH);
 }
 
 TEST(Planning, EnumerationsOutOfRangeAreRejectedAsIntegers) {

@@ -47,12 +47,12 @@ JobRun run_job(arcus_context_t* given = nullptr, int32_t method = ARCUS_METHOD_R
   p.step = 0.1;
   p.length = 2.0;
   arcus_job_t* job = nullptr;
-  r.status = arcus_advance(ctx, field, &p, 1, o, d, nullptr, &job);
+  r.status = arcus_curved_advance(ctx, field, &p, 1, o, d, nullptr, &job);
   r.message = arcus_context_last_error(ctx);
   if (job) {
     arcus_job_get_stats(job, &r.stats);
     r.positions.resize(3);
-    arcus_job_get_end_states(job, r.positions.data(), nullptr, nullptr, nullptr, nullptr);
+    arcus_job_get_curved_end_states(job, r.positions.data(), nullptr, nullptr, nullptr, nullptr);
     arcus_job_release(job);
   }
   arcus_field_release(field);

@@ -29,7 +29,7 @@ Result run(arcus_context_t* ctx, arcus_field_t* field, arcus_advance_params p, i
   }
   const size_t n = o.size() / 3;
   arcus_job_t* job = nullptr;
-  EXPECT_EQ(arcus_advance(ctx, field, &p, n, o.data(), d.data(), nullptr, &job), ARCUS_SUCCESS)
+  EXPECT_EQ(arcus_curved_advance(ctx, field, &p, n, o.data(), d.data(), nullptr, &job), ARCUS_SUCCESS)
       << arcus_context_last_error(ctx);
   arcus::testing::set_slice_units(0);
   Result r;
@@ -39,14 +39,14 @@ Result run(arcus_context_t* ctx, arcus_field_t* field, arcus_advance_params p, i
   r.lengths.resize(n);
   r.steps.resize(n);
   r.status.resize(n);
-  arcus_job_get_end_states(job, r.positions.data(), r.directions.data(), r.steps.data(), r.status.data(),
-                           r.lengths.data());
+  arcus_job_get_curved_end_states(job, r.positions.data(), r.directions.data(), r.steps.data(), r.status.data(),
+                                  r.lengths.data());
   if (p.record_path) {
     size_t total = 0;
-    arcus_job_get_path_size(job, &total);
+    arcus_job_get_curved_path_size(job, &total);
     r.points.resize(3 * total);
     r.offsets.resize(n + 1);
-    arcus_job_get_paths(job, r.offsets.data(), r.points.data(), nullptr);
+    arcus_job_get_curved_paths(job, r.offsets.data(), r.points.data(), nullptr);
   }
   arcus_job_stats stats;
   arcus_job_get_stats(job, &stats);
