@@ -1,15 +1,36 @@
-/* c_api_dump: the C99 reference run that tests/python compares the Python bindings with.
- * Traces 8 rays through n = 1 + 0.1·y with DP45 (rtol 1e-9, atol 1e-12) over 100 m:
- * origins (0, 0.1·i, 0), directions (1, 0.05·i − 0.2, 0), i = 0..7.  Prints one line per
- * ray: "x y z dx dy dz steps status" (%.17g for reals).  Exit status 0 on success. */
+/* c_api_dump: the C99 reference runs that tests/python compares the Python bindings with
+ * (tests/python/test_determinism.py, tests/python/test_c_and_python.py): the same library
+ * reached through its C API, so Python must print the same numbers.
+ *
+ *   c_api_dump [curved]       Traces 8 rays through n = 1 + 0.1·y with DP45 (rtol 1e-9,
+ *                             atol 1e-12) over 100 m: origins (0, 0.1·i, 0), directions
+ *                             (1, 0.05·i − 0.2, 0), i = 0..7.  One line per ray:
+ *                             "x y z dx dy dz steps status".
+ *   c_api_dump rainbow        Water's refractive index at 283.15 K at 450, 550 and 650 nm
+ *                             ("n WAVELENGTH N"), then Lorenz–Mie for a sphere of radius
+ *                             10 µm at 550 nm with that n (n_im = 0) at θ = 10, 90, 137.5
+ *                             and 170°: "mie THETA S1re S1im S2re S2im PARALLEL
+ *                             PERPENDICULAR", then "efficiencies Q_EXT Q_SCA Q_BACK G".
+ *   c_api_dump ocean          The "baltic" bio-optical preset's water on the grid
+ *                             400, 450, ..., 700 nm: "events K V0 V1 ..." for the 10
+ *                             events, then "absorption C ..." and "scattering C ..." for
+ *                             the 4 constituents (one value per wavelength).
+ *   c_api_dump render SCENE   One frame of the render scene file SCENE with the scene's own
+ *                             camera, integrator and techniques: "size WIDTH HEIGHT", then
+ *                             one line per pixel, top row first: "R G B" (%.9g: each
+ *                             float exactly).
+ *
+ * Reals print with %.17g (a double exactly).  Exit status 0 on success, 1 on a library
+ * error (the message on stderr), 2 for unknown arguments. */
 #include <arcus/arcus.h>
 
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 #define RAYS 8
 
-int main(void) {
-  arcus_context_t* ctx = NULL;
+static int dump_curved(arcus_context_t* ctx) {
   arcus_field_t* field = NULL;
   arcus_job_t* job = NULL;
   arcus_advance_params params;
@@ -29,11 +50,6 @@ int main(void) {
     directions[3 * i + 1] = 0.05 * i - 0.2;
     directions[3 * i + 2] = 0.0;
   }
-  st = arcus_context_create(ARCUS_DEVICE_DEFAULT, &ctx);
-  if (st != ARCUS_SUCCESS) {
-    fprintf(stderr, "c_api_dump: arcus_context_create: %s: %s\n", arcus_status_string(st), arcus_last_error());
-    return 1;
-  }
   st = arcus_field_create_linear(ctx, 1.0, gradient, &field);
   if (st != ARCUS_SUCCESS) goto fail;
   st = arcus_advance_params_init(&params);
@@ -42,9 +58,9 @@ int main(void) {
   params.rtol = 1e-9;
   params.atol = 1e-12;
   params.length = 100.0;
-  st = arcus_advance(ctx, field, &params, RAYS, origins, directions, NULL, &job);
+  st = arcus_curved_advance(ctx, field, &params, RAYS, origins, directions, NULL, &job);
   if (st != ARCUS_SUCCESS) goto fail;
-  st = arcus_job_get_end_states(job, positions, ends, steps, status, NULL);
+  st = arcus_job_get_curved_end_states(job, positions, ends, steps, status, NULL);
   if (st != ARCUS_SUCCESS) goto fail;
   for (i = 0; i < RAYS; ++i)
     printf("%.17g %.17g %.17g %.17g %.17g %.17g %llu %d\n", positions[3 * i], positions[3 * i + 1],
@@ -57,6 +73,145 @@ fail:
 done:
   if (job) arcus_job_release(job);
   if (field) arcus_field_release(field);
+  return rc;
+}
+
+/* Host code without a context: errors are the thread's (arcus_last_error). */
+static int dump_rainbow(void) {
+  static const double wavelengths[3] = {450.0, 550.0, 650.0};
+  static const double theta[4] = {10.0, 90.0, 137.5, 170.0};
+  const double temperature_k = 283.15, radius = 10e-6, wavelength = 550.0;
+  double n = 0.0, n_550 = 0.0;
+  double s1[2 * 4], s2[2 * 4], parallel[4], perpendicular[4];
+  arcus_mie_efficiencies eff;
+  arcus_status st;
+  int i;
+
+  for (i = 0; i < 3; ++i) {
+    st = arcus_rainbow_refractive_index(ARCUS_MATERIAL_WATER, wavelengths[i], temperature_k, &n);
+    if (st != ARCUS_SUCCESS) goto fail;
+    printf("n %.17g %.17g\n", wavelengths[i], n);
+    if (wavelengths[i] == wavelength) n_550 = n;
+  }
+  st = arcus_rainbow_mie(radius, wavelength, n_550, 0.0, 4, theta, s1, s2, parallel, perpendicular, &eff);
+  if (st != ARCUS_SUCCESS) goto fail;
+  for (i = 0; i < 4; ++i)
+    printf("mie %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", theta[i], s1[2 * i], s1[2 * i + 1], s2[2 * i],
+           s2[2 * i + 1], parallel[i], perpendicular[i]);
+  printf("efficiencies %.17g %.17g %.17g %.17g\n", eff.q_ext, eff.q_sca, eff.q_back, eff.g);
+  return 0;
+fail:
+  fprintf(stderr, "c_api_dump: %s: %s\n", arcus_status_string(st), arcus_last_error());
+  return 1;
+}
+
+static void print_rows(const char* name, const double* values, int rows, int count) {
+  int r, k;
+  for (r = 0; r < rows; ++r) {
+    printf("%s %d", name, r);
+    for (k = 0; k < count; ++k) printf(" %.17g", values[r * count + k]);
+    printf("\n");
+  }
+}
+
+#define OCEAN_COUNT 7
+
+static int dump_ocean(arcus_context_t* ctx) {
+  arcus_bio_optical bio;
+  arcus_water_t* water = NULL;
+  arcus_wavelength_grid grid;
+  double events[ARCUS_OCEAN_EVENT_COUNT * OCEAN_COUNT], absorption[4 * OCEAN_COUNT], scattering[4 * OCEAN_COUNT];
+  arcus_status st;
+  int rc = 1;
+
+  grid.first_nm = 400.0;
+  grid.step_nm = 50.0;
+  grid.count = OCEAN_COUNT;
+  st = arcus_bio_optical_preset("baltic", &bio);
+  if (st != ARCUS_SUCCESS) goto fail;
+  st = arcus_water_create(ctx, &bio, &water);
+  if (st != ARCUS_SUCCESS) goto fail;
+  st = arcus_water_get_coefficients(water, &grid, events, absorption, scattering);
+  if (st != ARCUS_SUCCESS) goto fail;
+  print_rows("events", events, ARCUS_OCEAN_EVENT_COUNT, OCEAN_COUNT);
+  print_rows("absorption", absorption, 4, OCEAN_COUNT);
+  print_rows("scattering", scattering, 4, OCEAN_COUNT);
+  rc = 0;
+  goto done;
+fail:
+  fprintf(stderr, "c_api_dump: %s: %s\n", arcus_status_string(st), arcus_context_last_error(ctx));
+done:
+  if (water) arcus_water_release(water);
+  return rc;
+}
+
+static int dump_render(arcus_context_t* ctx, const char* path) {
+  arcus_scene_t* scene = NULL;
+  arcus_renderer_t* renderer = NULL;
+  arcus_job_t* job = NULL;
+  float* rgb = NULL;
+  uint32_t width = 0, height = 0;
+  size_t i, pixels;
+  arcus_status st;
+  int rc = 1;
+
+  st = arcus_scene_load(ctx, path, &scene);
+  if (st != ARCUS_SUCCESS) goto fail;
+  st = arcus_renderer_create(scene, &renderer);
+  if (st != ARCUS_SUCCESS) goto fail;
+  st = arcus_render_frame(renderer, NULL, NULL, &job);
+  if (st != ARCUS_SUCCESS) goto fail;
+  st = arcus_job_get_render_image_size(job, &width, &height);
+  if (st != ARCUS_SUCCESS) goto fail;
+  pixels = (size_t)width * height;
+  rgb = (float*)malloc(3 * pixels * sizeof *rgb + 1);
+  if (!rgb) {
+    fprintf(stderr, "c_api_dump: out of memory\n");
+    goto done;
+  }
+  st = arcus_job_get_render_image(job, rgb);
+  if (st != ARCUS_SUCCESS) goto fail;
+  printf("size %lu %lu\n", (unsigned long)width, (unsigned long)height);
+  for (i = 0; i < pixels; ++i)
+    printf("%.9g %.9g %.9g\n", (double)rgb[3 * i], (double)rgb[3 * i + 1], (double)rgb[3 * i + 2]);
+  rc = 0;
+  goto done;
+fail:
+  fprintf(stderr, "c_api_dump: %s: %s\n", arcus_status_string(st), arcus_context_last_error(ctx));
+done:
+  free(rgb);
+  if (job) arcus_job_release(job);
+  if (renderer) arcus_renderer_release(renderer);
+  if (scene) arcus_scene_release(scene);
+  return rc;
+}
+
+static int usage(void) {
+  fprintf(stderr, "usage: c_api_dump [curved | rainbow | ocean | render SCENE]\n");
+  return 2;
+}
+
+int main(int argc, char** argv) {
+  const char* engine = argc > 1 ? argv[1] : "curved";
+  arcus_context_t* ctx = NULL;
+  arcus_status st;
+  int rc;
+
+  if (strcmp(engine, "render") == 0 ? argc != 3 : argc > 2) return usage();
+  if (strcmp(engine, "rainbow") == 0) return dump_rainbow();
+  if (strcmp(engine, "curved") != 0 && strcmp(engine, "ocean") != 0 && strcmp(engine, "render") != 0)
+    return usage();
+  st = arcus_context_create(ARCUS_DEVICE_DEFAULT, &ctx);
+  if (st != ARCUS_SUCCESS) {
+    fprintf(stderr, "c_api_dump: arcus_context_create: %s: %s\n", arcus_status_string(st), arcus_last_error());
+    return 1;
+  }
+  if (strcmp(engine, "curved") == 0)
+    rc = dump_curved(ctx);
+  else if (strcmp(engine, "ocean") == 0)
+    rc = dump_ocean(ctx);
+  else
+    rc = dump_render(ctx, argv[2]);
   arcus_context_release(ctx);
   return rc;
 }

@@ -4,7 +4,7 @@
     arcus_rainbow.py table --particle sphere:RADIUS|raindrop:DIAMETER|mesh:PATH[:SCALE][:flat]
                            [--wavelengths FIRST LAST COUNT] [--theta FIRST LAST STEP]
                            [--phi PHI | --phi FIRST LAST STEP] [--grid N] [--max-bounces P]
-                           [--material water|ice] [--temperature C] [--incoherent]
+                           [--material water|ice] [--temperature-k K] [--incoherent]
                            [-o OUT_PREFIX] [--plot OUT.png [--plot-wavelength NM] [--per-bounce]]
     arcus_rainbow.py mie   --particle sphere:RADIUS [--debye P] [same wavelength, theta,
                            material and output options]
@@ -141,8 +141,13 @@ def phi_of(args):
     raise Failure("--phi: one value, or FIRST LAST STEP, got %d values" % len(args.phi))
 
 
-def index_of(material, nm, temperature):
-    return rainbow.refractive_index(material, nm, temperature)
+def index_of(material, nm, temperature_k):
+    return rainbow.refractive_index(material, nm, temperature_k)
+
+
+def water_temperature_k(args):
+    """--temperature-k, or the deprecated --temperature (°C) converted."""
+    return args.temperature_k if args.temperature is None else args.temperature + 273.15
 
 
 # ---- progress -------------------------------------------------------------------------
@@ -305,7 +310,7 @@ def cmd_table(args):
             for nm in wl:
                 results.append(rainbow.phase_function(
                     particle, float(nm), theta, phi=phi, grid=args.grid, max_bounces=args.max_bounces,
-                    material=args.material, temperature=args.temperature, coherent=not args.incoherent, caustics=args.caustics,
+                    material=args.material, temperature_k=water_temperature_k(args), coherent=not args.incoherent, caustics=args.caustics,
                     context=ctx))
                 bar.advance()
         finally:
@@ -361,7 +366,7 @@ def cmd_mie(args):
     bar = Progress("Lorenz–Mie", total=len(wl), unit="λ", quiet=args.quiet)
     try:
         for nm in wl:
-            n = index_of(args.material, float(nm), args.temperature)
+            n = index_of(args.material, float(nm), water_temperature_k(args))
             m = mie.phase_function(radius, float(nm), theta, n=n)
             rows["par"].append(m.parallel)
             rows["perp"].append(m.perpendicular)
@@ -414,7 +419,8 @@ def parser():
         s.add_argument("--phi", nargs="+", type=float, metavar="PHI",
                        help="azimuth in degrees, or FIRST LAST STEP for a 2-D table (default: 0)")
         s.add_argument("--material", choices=("water", "ice"), default="water", help="default water")
-        s.add_argument("--temperature", type=float, default=20.0, help="water's temperature [°C] (20)")
+        s.add_argument("--temperature-k", type=float, default=293.15, help="water's temperature [K] (293.15)")
+        s.add_argument("--temperature", type=float, help="deprecated since 0.10: water's temperature [°C]")
         s.add_argument("-o", "--output", metavar="OUT_PREFIX",
                        help="writes OUT_PREFIX.csv, .npz and _unpolarized.npy (default %s)" % default_out)
         s.add_argument("--plot", metavar="OUT.png", help="plot around the bows at one wavelength")

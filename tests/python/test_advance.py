@@ -5,12 +5,12 @@ import numpy as np
 import pytest
 
 import arcus
-from arcus.media import Constant, Linear, Luneburg, StandardAtmosphere
+from arcus.fields import Constant, Linear, Luneburg, StandardAtmosphere
 from closed_forms import catenary, fan
 
 N0, G = 1.0, 0.1
 LINEAR = Linear(N0, (0.0, G, 0.0))  # n = 1 + 0.1 y
-INTEGRATORS = {"STRAIGHT", "EULER", "RK2", "RK4", "DP45"}
+INTEGRATORS = {"CURVED_STRAIGHT", "CURVED_EULER", "CURVED_RK2", "CURVED_RK4", "CURVED_DP45"}
 
 
 def catenary_error(result, origins, directions, length):
@@ -49,8 +49,8 @@ def test_constant_field_is_one_exact_straight_segment(ctx, method):
     np.testing.assert_allclose(result.directions, unit, rtol=0, atol=1e-15)
     assert np.all(result.lengths == 7.5)
     assert np.all(result.status == arcus.RAY_DONE)
-    assert "STRAIGHT" in result.features and not (result.features & (INTEGRATORS - {"STRAIGHT"}))
-    assert result.feature_bits & arcus.FEATURES["STRAIGHT"]
+    assert "CURVED_STRAIGHT" in result.features and not (result.features & (INTEGRATORS - {"CURVED_STRAIGHT"}))
+    assert result.feature_bits & arcus.FEATURES["CURVED_STRAIGHT"]
 
 
 # ---- catenary (n = 1 + 0.1 y) ---------------------------------------------------------------
@@ -62,7 +62,7 @@ def test_dp45_catenary(ctx):
     result = ctx.advance(LINEAR, origins, directions, method="dp45", rtol=rtol, atol=atol, length=length)
     assert np.all(result.status == arcus.RAY_DONE)
     assert np.all(result.lengths == length)
-    assert {"DP45", "FIELD_LINEAR"} <= result.features and "FLOAT" not in result.features
+    assert {"CURVED_DP45", "CURVED_FIELD_LINEAR"} <= result.features and "FLOAT" not in result.features
     position_error, direction_error = catenary_error(result, origins, directions, length)
     bound = dp45_bound(rtol, atol, origins, directions, length)
     assert position_error < bound
@@ -121,7 +121,7 @@ def test_float_precision_rk4(ctx):
     length, step = 4.0, 0.1
     double = ctx.advance(LINEAR, origins, directions, method="rk4", step=step, length=length)
     single = ctx.advance(LINEAR, origins, directions, method="rk4", step=step, length=length, precision="float")
-    assert {"RK4", "FLOAT"} <= single.features
+    assert {"CURVED_RK4", "FLOAT"} <= single.features
     float_error, float_direction_error = catenary_error(single, origins, directions, length)
     double_error, double_direction_error = catenary_error(double, origins, directions, length)
     # RK4's truncation error at h = 0.1 is ~4e-10, far below float's rounding.
@@ -137,7 +137,7 @@ def test_fixed_step_methods_converge_at_their_order(ctx, method, order, step):
     errors = []
     for h in (step, step / 2):
         result = ctx.advance(LINEAR, origins, directions, method=method, step=h, length=length)
-        assert method.upper() in result.features
+        assert "CURVED_" + method.upper() in result.features
         assert np.all(result.status == arcus.RAY_DONE) and np.all(result.lengths == length)
         assert np.all(result.steps == round(length / h))
         errors.append(catenary_error(result, origins, directions, length)[0])
@@ -226,7 +226,7 @@ def test_straight_rays_leave_the_box_on_its_faces(ctx):
     origins = np.zeros((40, 3))
     origins[-1] = (5.0, 0.0, 0.0)  # starts outside
     result = ctx.advance(Constant(1.0), origins, directions, length=100.0, box=BOX)
-    assert "BOX" in result.features
+    assert "CURVED_BOX" in result.features
     unit = directions / np.linalg.norm(directions, axis=1, keepdims=True)
     # Distance to the first face along each direction.
     with np.errstate(divide="ignore"):
@@ -283,7 +283,7 @@ def test_horizontal_ray_in_flat_atmosphere_follows_local_catenary(ctx):
     n, gradient = air.evaluate(ctx, [0.0, height, 0.0])
     g = gradient[0, 1]
     result = ctx.advance(air, [0.0, height, 0.0], [1.0, 0.0, 0.0], length=length, rtol=1e-12, atol=1e-12)
-    assert "FIELD_ATMOSPHERE" in result.features
+    assert "CURVED_FIELD_ATMOSPHERE" in result.features
     end, _ = catenary(n[0] - g * height, g, [[0.0, height, 0.0]], [[1.0, 0.0, 0.0]], length)
     drop = height - result.positions[0, 1]
     assert drop == pytest.approx(-g / n[0] * length**2 / 2, rel=1e-3)  # ~5 cm

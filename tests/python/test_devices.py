@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import arcus
-from arcus.media import Constant, Luneburg
+from arcus.fields import Constant, Luneburg
 
 
 def test_devices_describe_at_least_one_device():

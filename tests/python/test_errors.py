@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import arcus
-from arcus.media import Constant, Grid, Linear, StandardAtmosphere
+from arcus.fields import Constant, Grid, Linear, StandardAtmosphere
 from closed_forms import fan
 
 LINEAR = Linear(1.0, (0.0, 0.1, 0.0))
@@ -67,9 +67,9 @@ def test_invalid_parameters_are_rejected_by_the_library(ctx, options, argument):
 )
 def test_mismatched_shapes_are_caught_before_the_library(ctx, monkeypatch, origins, directions, message):
     def never(*args):
-        raise AssertionError("arcus_advance was called")
+        raise AssertionError("arcus_curved_advance was called")
 
-    monkeypatch.setattr(arcus._lib.lib, "arcus_advance", never)
+    monkeypatch.setattr(arcus._lib.lib, "arcus_curved_advance", never)
     with pytest.raises(arcus.ArgumentError, match=message) as caught:
         ctx.advance(LINEAR, origins, directions)
     assert isinstance(caught.value, ValueError)
@@ -117,7 +117,7 @@ def test_record_path_takes_only_bools(ctx, value):
 @pytest.mark.parametrize("value, recorded", [(True, True), (False, False), (np.True_, True), (np.False_, False)])
 def test_record_path_bools_and_numpy_bools(ctx, value, recorded):
     result = ctx.advance(LINEAR, [0, 0, 0], [1, 0, 0], record_path=value)
-    assert (result.paths is not None) == recorded and ("RECORD_PATH" in result.features) == recorded
+    assert (result.paths is not None) == recorded and ("CURVED_RECORD_PATH" in result.features) == recorded
 
 
 def test_spherical_takes_only_bools(ctx):
@@ -157,9 +157,9 @@ def test_big_endian_grid_dtype_is_refused():
 )
 def test_numbers_are_never_read_from_strings_or_bools(ctx, monkeypatch, options, message):
     def never(*args):
-        raise AssertionError("arcus_advance was called")
+        raise AssertionError("arcus_curved_advance was called")
 
-    monkeypatch.setattr(arcus._lib.lib, "arcus_advance", never)
+    monkeypatch.setattr(arcus._lib.lib, "arcus_curved_advance", never)
     with pytest.raises(arcus.ArgumentError, match=message):
         ctx.advance(LINEAR, [0, 0, 0], [1, 0, 0], **options)
 

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 import arcus
-from arcus.media import (Constant, FishEye, Grid, GridFile, Inversion, Linear, LinearN2, Luneburg,
-                         StandardAtmosphere)
+from arcus.fields import (Constant, FishEye, Grid, GridFile, Inversion, Linear, LinearN2, Luneburg,
+                          StandardAtmosphere)
 from closed_forms import ciddor
 
 RNG = np.random.default_rng(7)
@@ -14,6 +14,15 @@ POINTS = RNG.uniform(-1.5, 1.5, size=(64, 3))
 # Analytic fields evaluate in double precision with a handful of operations, so they
 # agree with numpy's evaluation of the same formula to a few ulps.
 TIGHT = dict(rtol=1e-14, atol=1e-14)
+
+
+def test_arcus_media_is_the_deprecated_name_of_arcus_fields():
+    import importlib
+    import sys
+    sys.modules.pop("arcus.media", None)  # so that the import runs (and warns) here
+    with pytest.warns(DeprecationWarning, match="arcus.fields"):
+        media = importlib.import_module("arcus.media")
+    assert media.Linear is Linear and arcus.media.StandardAtmosphere is StandardAtmosphere
 
 
 def test_constant(ctx):

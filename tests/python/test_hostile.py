@@ -337,7 +337,7 @@ def test_closing_a_context_cancels_its_running_job_which_keeps_its_results():
     # close() blocked until the job ended; then the job raised "Context is closed" and its
     # results were lost.  Now the job is cancelled at its next slice and raises
     # ARCUS_ERROR_CANCELLED with what it had.
-    from arcus.media import Linear
+    from arcus.fields import Linear
     ctx = arcus.Context()
     origins = np.zeros((64, 3))
     directions = np.tile([1.0, 0.0, 0.0], (64, 1))

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import arcus
-from arcus.media import Linear
+from arcus.fields import Linear
 from closed_forms import catenary_height, fan
 
 N0, G = 1.0, 0.1
@@ -20,7 +20,7 @@ def recorded(ctx):
 
 def test_paths_run_from_origin_to_end(recorded):
     origins, directions, result = recorded
-    assert "RECORD_PATH" in result.features
+    assert "CURVED_RECORD_PATH" in result.features
     assert len(result.paths) == 8
     offsets = result.path_offsets.astype(np.int64)
     assert offsets[0] == 0 and offsets[-1] == len(result.path_points) and np.all(np.diff(offsets) > 0)
@@ -38,7 +38,7 @@ def test_paths_run_from_origin_to_end(recorded):
 def test_recording_does_not_change_the_end_states(ctx, recorded):
     origins, directions, result = recorded
     plain = ctx.advance(LINEAR, origins, directions, **dict(JOB, record_path=False))
-    assert plain.paths is None and plain.path_offsets is None and "RECORD_PATH" not in plain.features
+    assert plain.paths is None and plain.path_offsets is None and "CURVED_RECORD_PATH" not in plain.features
     np.testing.assert_allclose(plain.positions, result.positions, rtol=0, atol=1e-13)
     np.testing.assert_array_equal(plain.steps, result.steps)
 

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import arcus
-from arcus.media import Linear
+from arcus.fields import Linear
 from closed_forms import catenary, fan
 
 N0, G = 1.0, 0.1
@@ -111,7 +111,7 @@ RELEASE_IN_CALLBACK = r"""
 import gc, sys
 import arcus
 from arcus import context as context_module
-from arcus.media import Constant, Linear
+from arcus.fields import Constant, Linear
 
 ctx = arcus.Context()
 held = [Constant(1.25)]
@@ -149,8 +149,8 @@ def test_an_object_released_during_progress_is_released_after_the_job(repo):
 @pytest.mark.parametrize("progress", [1, "yes", True])
 def test_progress_must_be_callable(ctx, monkeypatch, progress):
     def never(*args):
-        raise AssertionError("arcus_advance was called")
+        raise AssertionError("arcus_curved_advance was called")
 
-    monkeypatch.setattr(arcus._lib.lib, "arcus_advance", never)
+    monkeypatch.setattr(arcus._lib.lib, "arcus_curved_advance", never)
     with pytest.raises(arcus.ArgumentError, match="progress must be a callable"):
         ctx.advance(LINEAR, [0, 0, 0], [1, 0, 0], progress=progress)

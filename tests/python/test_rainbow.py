@@ -42,10 +42,19 @@ def incoherent(ctx):
 # ---- refractive index -----------------------------------------------------------------
 
 
+def test_temperature_in_celsius_is_the_deprecated_spelling_of_temperature_k():
+    # arcus 0.9 took °C; the same water through both spellings is the same index.
+    with pytest.warns(DeprecationWarning, match="temperature_k"):
+        old = rainbow.refractive_index("water", 589.3, temperature=20.0)
+    assert old == rainbow.refractive_index("water", 589.3, 20.0 + 273.15)
+    with pytest.raises(arcus.ArgumentError, match="temperature_k"):  # 20 read as kelvin: out of range, named
+        rainbow.refractive_index("water", 589.3, 20.0)
+
+
 def test_refractive_index_of_water_and_ice():
-    n = rainbow.refractive_index("water", 589.3, 20.0)
+    n = rainbow.refractive_index("water", 589.3, 293.15)
     assert 1.3325 < n < 1.3340  # sodium D at 20 °C: 1.3330 (CRC), IAPWS R9-97 within 1e-4
-    warm = rainbow.refractive_index("water", 589.3, 80.0)
+    warm = rainbow.refractive_index("water", 589.3, 353.15)
     assert warm < n - 1e-3  # water's index falls with temperature, faster when warm
     ice = rainbow.refractive_index("ice", [400.0, 589.3, 700.0])
     assert ice.shape == (3,)
@@ -323,8 +332,8 @@ def test_mie_normalisation_and_water():
     np.testing.assert_allclose(r.perpendicular, np.abs(r.s1) ** 2 / (2 * np.pi * xs ** 2 * r.q_sca), rtol=1e-9)
     assert -1 < r.g < 1 and r.q_ext == pytest.approx(r.q_sca, rel=1e-9)  # no absorption
     # n None: water at the wavelength and temperature.
-    w = mie.phase_function(radius, nm, [90.0], temperature=10.0)
-    assert w.n == rainbow.refractive_index("water", nm, 10.0)
+    w = mie.phase_function(radius, nm, [90.0], temperature_k=283.15)
+    assert w.n == rainbow.refractive_index("water", nm, 283.15)
     # An absorbing sphere extinguishes more than it scatters.
     a = mie.phase_function(radius, nm, [90.0], n=1.33 + 0.05j)
     assert a.q_ext > 1.05 * a.q_sca

@@ -67,14 +67,14 @@ def test_scene_attributes_are_the_files(mirage):
 
 def test_scene_field_is_the_scenes_medium(ctx, mirage):
     scene, _ = mirage
-    assert isinstance(scene.field, arcus.SceneField) and isinstance(scene.field, arcus.media.Field)
+    assert isinstance(scene.field, arcus.SceneField) and isinstance(scene.field, arcus.fields.Field)
     assert ctx.field_kind(scene.field) == "ATMOSPHERE"
     # The medium is air at 550 nm with a hot ground layer (+12 K, fading out at 2 m).  At
     # sea level it thins the air by 288.15 / 300.15.  Above 2 m the standard temperatures
     # hold, the pressure a little higher (the layer's column is lighter, by ~ 2 m / 8.4 km
     # * 6 K / 294 K = 5e-6).
     n, _ = scene.field.evaluate(ctx, [[0.0, 0.0, 0.0], [0.0, 50.0, 0.0]])
-    standard, _ = arcus.media.StandardAtmosphere().evaluate(ctx, [[0.0, 0.0, 0.0], [0.0, 50.0, 0.0]])
+    standard, _ = arcus.fields.StandardAtmosphere().evaluate(ctx, [[0.0, 0.0, 0.0], [0.0, 50.0, 0.0]])
     assert (n[0] - 1) / (standard[0] - 1) == pytest.approx(288.15 / 300.15, rel=2e-3)
     assert (n[1] - 1) / (standard[1] - 1) == pytest.approx(1 + 5e-6, rel=2e-6)
 
@@ -89,7 +89,7 @@ def test_mirage_scene_keeps_snells_invariant_and_grounds_the_rays_it_predicts(ct
     invariant; otherwise it turns above the ground and climbs (the mirage).
     """
     scene, result = mirage
-    assert "RECORD_PATH" in result.features and len(result.paths) == 64
+    assert "CURVED_RECORD_PATH" in result.features and len(result.paths) == 64
     unit = scene.directions / np.linalg.norm(scene.directions, axis=1, keepdims=True)
     n_start, _ = scene.field.evaluate(ctx, scene.origins)
     n_end, _ = scene.field.evaluate(ctx, result.positions)
@@ -140,7 +140,7 @@ def test_luneburg_scene_point_on_the_surface_leaves_as_a_parallel_beam(ctx):
 def test_scene_of_a_linear_medium_follows_the_catenary(ctx, tmp_path):
     scene = ctx.load_scene(write_scene(tmp_path, linear_scene()))
     result = scene.advance()
-    assert {"DP45", "FIELD_LINEAR"} <= result.features and result.paths is None
+    assert {"CURVED_DP45", "CURVED_FIELD_LINEAR"} <= result.features and result.paths is None
     end, direction = catenary(1.0, 0.1, scene.origins, scene.directions, 10.0)
     np.testing.assert_allclose(result.positions, end, rtol=0, atol=1e-7)
     np.testing.assert_allclose(result.directions, direction, rtol=0, atol=1e-7)
@@ -164,7 +164,7 @@ def test_grid_scene_reads_its_file_relative_to_the_scene(ctx, tmp_path):
 
 
 def test_determinism_scene_advance_and_context_advance_with_its_params(ctx, mirage):
-    """Not validation: arcus_scene_advance and arcus_advance with the scene's rays, field
+    """Not validation: arcus_curved_advance_scene and arcus_curved_advance with the scene's rays, field
     and params read back agree bit for bit, so ``params`` misses no setting."""
     scene, result = mirage
     again = ctx.advance(scene.field, scene.origins, scene.directions, wavelengths=scene.wavelengths, **scene.params)
@@ -187,7 +187,7 @@ def test_scene_wavelengths_reach_the_rays(ctx, tmp_path):
     scene = ctx.load_scene(write_scene(tmp_path, document))
     np.testing.assert_array_equal(scene.wavelengths, [400.0, 700.0])
     result = scene.advance()
-    assert "DISPERSION" in result.features
+    assert "CURVED_DISPERSION" in result.features
     unit = np.array(direction) / np.linalg.norm(direction)
     bending = np.arccos(np.clip(result.directions @ unit, -1.0, 1.0))
     assert bending[0] / bending[1] == pytest.approx(ciddor(400.0) / ciddor(700.0), rel=2e-5)

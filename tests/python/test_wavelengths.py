@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import arcus
-from arcus.media import Linear, StandardAtmosphere
+from arcus.fields import Linear, StandardAtmosphere
 from closed_forms import catenary, ciddor, fan
 
 
@@ -40,7 +40,7 @@ def stars(ctx):
 
 def test_refraction_at_400_and_700_nm_in_one_job_scales_as_ciddors_refractivity(stars):
     directions, result = stars
-    assert "DISPERSION" in result.features and "FIELD_ATMOSPHERE" in result.features
+    assert "CURVED_DISPERSION" in result.features and "CURVED_FIELD_ATMOSPHERE" in result.features
     assert np.all(result.status == arcus.RAY_DONE)
     refraction = bending(directions, result.directions)
     # Refraction R = (n0 - 1)(1 - b) tan z - (n0 - 1)(b - (n0 - 1)/2) tan^3 z + ... is
@@ -76,7 +76,7 @@ def test_each_ray_gets_what_a_field_of_its_wavelength_gives(ctx, stars):
     origins, _ = star_rays()
     for nm in (400.0, 700.0):
         mono = ctx.advance(StandardAtmosphere(spherical=True, wavelength=nm), origins, directions, **STAR_JOB)
-        assert "DISPERSION" not in mono.features
+        assert "CURVED_DISPERSION" not in mono.features
         mine = WAVELENGTHS == nm
         np.testing.assert_allclose(bending(directions[mine], result.directions[mine]),
                                    bending(directions[mine], mono.directions[mine]), rtol=1e-9, atol=0)
@@ -89,7 +89,7 @@ def test_one_number_is_every_rays_wavelength(ctx):
     one = ctx.advance(air, origins, directions, wavelengths=400.0, **job)
     each = ctx.advance(air, origins, directions, wavelengths=np.full(4, 400.0), **job)
     np.testing.assert_array_equal(one.directions, each.directions)
-    assert "DISPERSION" in one.features
+    assert "CURVED_DISPERSION" in one.features
     # and the scalar really reached the library: 400 nm bends more than the field's 550 nm
     plain = ctx.advance(air, origins, directions, **job)
     assert np.all(bending(directions, one.directions) > 1.01 * bending(directions, plain.directions))
@@ -100,7 +100,7 @@ def test_non_dispersive_fields_ignore_the_wavelengths(ctx):
     field = Linear(1.0, (0.0, 0.1, 0.0))
     # Not even checked: the field has no use for them.
     result = ctx.advance(field, origins, directions, wavelengths=np.linspace(-5.0, 1e4, 8), length=10.0, rtol=1e-10)
-    assert "DISPERSION" not in result.features and np.all(result.status == arcus.RAY_DONE)
+    assert "CURVED_DISPERSION" not in result.features and np.all(result.status == arcus.RAY_DONE)
     end, _ = catenary(1.0, 0.1, origins, directions, 10.0)
     np.testing.assert_allclose(result.positions, end, rtol=0, atol=1e-7)
 
@@ -129,9 +129,9 @@ def test_a_wavelength_outside_ciddors_range_flags_only_its_ray(ctx):
 )
 def test_wavelengths_are_checked_before_the_library(ctx, monkeypatch, wavelengths, message):
     def never(*args):
-        raise AssertionError("arcus_advance was called")
+        raise AssertionError("arcus_curved_advance was called")
 
-    monkeypatch.setattr(arcus._lib.lib, "arcus_advance", never)
+    monkeypatch.setattr(arcus._lib.lib, "arcus_curved_advance", never)
     origins, directions = fan(4)
     with pytest.raises(arcus.ArgumentError, match="wavelengths must .*" + message):
         ctx.advance(StandardAtmosphere(), origins, directions, wavelengths=wavelengths)

@@ -3,7 +3,7 @@
 A thin ctypes layer over the C library libarcus with numpy in and out::
 
     import arcus
-    from arcus.media import Linear
+    from arcus.fields import Linear
 
     with arcus.Context() as ctx:
         result = ctx.advance(Linear(1.0, (0, 0.1, 0)), origins, directions, length=10.0)
@@ -19,7 +19,7 @@ The shared library is looked up, in order, at the ARCUS_LIBRARY environment vari
 
 import ctypes as _ctypes
 
-from . import halo, image, media, mie, ocean, rainbow, sky, sweep
+from . import fields, halo, image, mie, ocean, rainbow, sky, sweep
 from ._constants import (
     DEVICE_DEFAULT,
     EARTH_RADIUS,
@@ -86,8 +86,8 @@ __all__ = [
     "SceneField",
     "devices",
     "feature_names",
+    "fields",
     "library_path",
-    "media",
     "mie",
     "ocean",
     "rainbow",
@@ -107,5 +107,13 @@ def bundled_scene(name):
     """The path of a scene shipped with arcus, by name ("inferior_mirage",
     "rainbow/halo", "ocean/atlantic"), wherever arcus is installed; relative file names
     inside a scene resolve against its own folder, so it works from any directory."""
-    from .cli.resources import scene
+    from .cli.resources import scene  # not at the top: arcus.cli imports arcus, and `import arcus` needs no CLI
     return scene(name)
+
+
+def __getattr__(name):
+    # arcus.media, the 0.9 name of arcus.fields: imported (and warned of) only when used.
+    if name == "media":
+        import importlib
+        return importlib.import_module(".media", __name__)
+    raise AttributeError("module 'arcus' has no attribute %r" % (name,))

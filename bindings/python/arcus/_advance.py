@@ -100,7 +100,7 @@ class AdvanceResult:
         failures: (N,) int32 why each ``RAY_FAILED`` ray failed
             (:data:`arcus.FAILURE_TOLERANCE`, ...); :data:`arcus.FAILURE_NONE` for the others.
         features: names of the kernel features the job compiled with, e.g.
-            ``{"DP45", "FIELD_LINEAR"}``; ``feature_bits`` is the raw bit mask.
+            ``{"CURVED_DP45", "CURVED_FIELD_LINEAR"}``; ``feature_bits`` is the raw bit mask.
         stats: timings and layout: build_seconds, kernel_seconds, total_seconds,
             program_origin ("built", "memory cache" or "disk cache"), launches (slices),
             lanes, groups.

@@ -14,6 +14,7 @@ from . import _lib
 from ._args import to_path
 from ._errors import ArgumentError
 from ._lib import lib
+from .context import Context
 
 
 def read(path, engines, name="scene"):
@@ -25,8 +26,6 @@ def read(path, engines, name="scene"):
     (ARCUS_ERROR_IO); an invalid one :class:`arcus.ArgumentError` with the library's
     message.
     """
-    from .context import Context
-
     encoded = to_path(path, name)
     # A context of its own: scene objects belong to one, and this one lives only for
     # the read (so a forked worker never inherits it).

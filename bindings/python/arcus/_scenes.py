@@ -12,7 +12,7 @@ from . import _lib
 from ._args import to_path
 from ._errors import ArgumentError, Error
 from ._lib import lib
-from .media import Field
+from .fields import Field
 
 from ._advance import _advance_options, _check_progress
 from ._lifetime import _Handle
@@ -40,24 +40,24 @@ class RenderResult:
 
 def _render_result(context, job, exr, png):
     w, h = c_uint32(), c_uint32()
-    context._check(lib.arcus_job_get_image_size(job, byref(w), byref(h)))
+    context._check(lib.arcus_job_get_render_image_size(job, byref(w), byref(h)))
     shape = (h.value, w.value)
     image = np.empty(shape + (3,), dtype=np.float32)
-    context._check(lib.arcus_job_get_image(job, _lib.ptr(image, ctypes.c_float)))
+    context._check(lib.arcus_job_get_render_image(job, _lib.ptr(image, ctypes.c_float)))
     points = np.empty(shape + (3,))
     objects = np.empty(shape, dtype=np.int32)
     primitives = np.empty(shape, dtype=np.int32)
     distances = np.empty(shape)
     steps = np.empty(shape, dtype=np.uint32)
     tests = np.empty(shape, dtype=np.uint32)
-    context._check(lib.arcus_job_get_hits(job, _lib.ptr(points), _lib.ptr(objects, c_int32),
+    context._check(lib.arcus_job_get_render_hits(job, _lib.ptr(points), _lib.ptr(objects, c_int32),
                                           _lib.ptr(primitives, c_int32), _lib.ptr(distances),
                                           _lib.ptr(steps, c_uint32), _lib.ptr(tests, c_uint32)))
     st = _lib.RenderStatsStruct()
     context._check(lib.arcus_job_get_render_stats(job, byref(st)))
     stats = {name: getattr(st, name) for name, _ in st._fields_}
     if exr is not None or png is not None:
-        context._check(lib.arcus_job_write_image(job, None if exr is None else to_path(exr, "exr"),
+        context._check(lib.arcus_job_write_render_image(job, None if exr is None else to_path(exr, "exr"),
                                                  None if png is None else to_path(png, "png")))
     return RenderResult(image, objects, primitives, points, distances, steps, tests, stats)
 
@@ -156,7 +156,7 @@ class Scene:
         return "<arcus.Scene %r (%s, %d rays)>" % (self.name, self.engine, len(self))
 
     def advance(self, progress=None):
-        """Advances the scene's rays through its field with its settings (``arcus_scene_advance``).
+        """Advances the scene's rays through its field with its settings (``arcus_curved_advance_scene``).
 
         ``progress`` is that of :meth:`Context.advance` (must not call this scene's
         context).  Returns an :class:`AdvanceResult`; raises :class:`arcus.Error` as
@@ -167,6 +167,6 @@ class Scene:
         scene = self._ref.value
 
         def start(callback, job):
-            return lib.arcus_scene_advance(scene, callback, None, job)
+            return lib.arcus_curved_advance_scene(scene, callback, None, job)
 
-        return self._context._run_job(start, progress, self._params["record_path"], "arcus_scene_advance")
+        return self._context._run_job(start, progress, self._params["record_path"], "arcus_curved_advance_scene")

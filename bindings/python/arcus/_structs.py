@@ -231,7 +231,7 @@ class RainbowParamsStruct(ctypes.Structure):
     _fields_ = [
         ("wavelength_nm", c_double),
         ("material", c_int32),
-        ("temperature_c", c_double),
+        ("temperature_k", c_double),
         ("refractive_index", c_double),
         ("grid", c_uint32),
         ("alpha", c_double),
@@ -241,6 +241,7 @@ class RainbowParamsStruct(ctypes.Structure):
         ("query_phi_deg", c_double),
         ("progress", PROGRESS_CALLBACK),
         ("progress_user", c_void_p),
+        ("temperature_c", c_double),  # deprecated (0.9, °C): NaN, unused here
     ]
 
 

@@ -14,6 +14,8 @@ import numpy as np
 from ._args import to_bool, to_int
 from ._errors import ArgumentError
 from ._task_cache import _Cache, default_cache_dir
+from .context import Context
+from .progress import Progress
 
 #: Seconds to wait for a scheduler given by address before giving up.
 CONNECT_TIMEOUT = 10.0
@@ -96,7 +98,7 @@ def _dask_client(client, workers, connect_timeout):
     """A distributed.Client for the sweep: the caller's, one connected to an address,
     or one on a LocalCluster of ``workers`` processes; whatever is started here is
     closed on leaving."""
-    import distributed
+    import distributed  # Dask only where a sweep runs on it: it takes seconds to import, and serial sweeps never need it
     if isinstance(client, distributed.Client):
         yield client
         return
@@ -142,7 +144,7 @@ def _run_serial(function, tasks, finish, errors, **_):
 def _run_on_dask(function, tasks, finish, errors, *, client, workers, connect_timeout):
     """Runs ``tasks`` (digest -> spec) on Dask, finishing each as it arrives; on an
     interrupt the tasks still pending are cancelled."""
-    import distributed
+    import distributed  # as in _dask_client: Dask only where a sweep runs on it
     with _dask_client(client, workers, connect_timeout) as dask_client:
         prefix = getattr(function, "__name__", "task").strip("_")  # names the bar's row
         futures = dask_client.map(function, list(tasks.values()), key=["%s-%s" % (prefix, d) for d in tasks],
@@ -196,7 +198,7 @@ def map_tasks(function, specs, *, cache_dir=None, client=None, workers=None, pro
     if not (client is None or named_serial) and workers is not None:
         raise ArgumentError("workers applies to the local cluster only, not with client=%r" % (client,))
     if not (client is None or isinstance(client, str)):
-        import distributed
+        import distributed  # as in _dask_client: a client object means Dask is in use already
         if not isinstance(client, distributed.Client):
             raise ArgumentError("client must be None, 'serial', a scheduler address or a distributed.Client, got %r"
                                 % (client,))
@@ -225,7 +227,6 @@ def map_tasks(function, specs, *, cache_dir=None, client=None, workers=None, pro
 
     bar = None
     if progress and missing:
-        from .progress import Progress
         what = getattr(function, "what", name)  # e.g. "phase tables (one particle, one wavelength)"
         bar = Progress("%s: %d cached, computing %d%s" % (what, cached, len(missing), "" if serial else " on Dask"),
                        total=len(missing), unit="tasks")
@@ -260,7 +261,7 @@ def map_tasks(function, specs, *, cache_dir=None, client=None, workers=None, pro
 
 
 def _arcus_version():
-    from . import __version__
+    from . import __version__  # not at the top: the package's __init__ imports sweep, which imports this module
     return __version__
 
 
@@ -275,6 +276,5 @@ def _worker_context():
     key = (os.getpid(), threading.get_ident())
     ctx = _contexts.get(key)
     if ctx is None:
-        from .context import Context
         ctx = _contexts[key] = Context()
     return ctx

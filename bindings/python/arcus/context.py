@@ -1,7 +1,10 @@
 """Devices, contexts, advancing rays and loading scenes."""
 
 import contextlib
+import json
 import numbers
+import os
+import tempfile
 import threading
 import weakref
 from ctypes import byref, c_int32, c_size_t, c_uint32, c_uint64, c_void_p
@@ -16,7 +19,10 @@ from ._errors import DEVICE_NOT_FOUND, ArgumentError, Error, error_for
 from ._advance import AdvanceResult, _advance_params, _check_progress  # noqa: F401  (re-exported)
 from ._lib import lib
 from ._lifetime import _active, _ContextState, _deferred, _flush_deferred, _Handle, _release  # noqa: F401
-from .media import Field
+from .fields import Field
+
+# Defined beside the scenes they come from; Context.load_scene and render make them.
+from ._scenes import RenderResult, Scene, SceneField, _render_result  # noqa: F401
 
 __all__ = ["DeviceInfo", "devices", "Context", "AdvanceResult", "Scene", "SceneField"]
 
@@ -219,7 +225,7 @@ class Context:
     def _field(self, medium):
         """The library handle of ``medium`` on this context, created on first use."""
         if not isinstance(medium, Field):
-            raise ArgumentError("field must be an arcus.media field (Constant, Linear, ...) or a Scene's field, "
+            raise ArgumentError("field must be an arcus.fields field (Constant, Linear, ...) or a Scene's field, "
                                 "got %r" % (medium,))
         ctx = self._handle
         bound = medium._handle_on(self)  # a scene's field has its one handle
@@ -261,7 +267,7 @@ class Context:
         """Advances rays through ``field`` along the ray equation d/ds(n dr/ds) = ∇n.
 
         Args:
-            field: an :mod:`arcus.media` field, or the ``field`` of a :class:`Scene`
+            field: an :mod:`arcus.fields` field, or the ``field`` of a :class:`Scene`
                 loaded on this context.
             origins, directions: (N, 3) arrays (or one (3,) ray); directions need not be
                 unit length.
@@ -310,10 +316,10 @@ class Context:
 
         def start(callback, job):
             params.progress = callback
-            return lib.arcus_advance(ctx, field_handle, byref(params), len(points), _lib.ptr(points),
+            return lib.arcus_curved_advance(ctx, field_handle, byref(params), len(points), _lib.ptr(points),
                                      _lib.ptr(heading), _lib.ptr(per_ray), job)
 
-        return self._run_job(start, progress, bool(params.record_path), "arcus_advance")
+        return self._run_job(start, progress, bool(params.record_path), "arcus_curved_advance")
 
     def _run_job(self, start, progress, record_path, what, reader=None):
         """Runs ``start(callback, job_out)`` (a library call making a job) and reads its job
@@ -402,10 +408,10 @@ class Context:
         status = np.empty(n, dtype=np.int32)
         lengths = np.empty(n)
         failures = np.empty(n, dtype=np.int32)
-        self._check(lib.arcus_job_get_end_states(
+        self._check(lib.arcus_job_get_curved_end_states(
             job, _lib.ptr(positions), _lib.ptr(directions), _lib.ptr(steps, c_uint64), _lib.ptr(status, c_int32),
             _lib.ptr(lengths)))
-        self._check(lib.arcus_job_get_failures(job, _lib.ptr(failures, c_int32)))
+        self._check(lib.arcus_job_get_curved_failures(job, _lib.ptr(failures, c_int32)))
         bits = c_uint64()
         self._check(lib.arcus_job_get_features(job, byref(bits)))
         stats = _lib.JobStatsStruct()
@@ -431,11 +437,11 @@ class Context:
         )
         if record_path:
             total = c_size_t()
-            self._check(lib.arcus_job_get_path_size(job, byref(total)))
+            self._check(lib.arcus_job_get_curved_path_size(job, byref(total)))
             offsets = np.empty(n + 1, dtype=np.uint64)
             points = np.empty((total.value, 3))
             needed = np.empty(n, dtype=np.uint64)
-            self._check(lib.arcus_job_get_paths(job, _lib.ptr(offsets, c_uint64), _lib.ptr(points),
+            self._check(lib.arcus_job_get_curved_paths(job, _lib.ptr(offsets, c_uint64), _lib.ptr(points),
                                                 _lib.ptr(needed, c_uint64)))
             result.path_offsets = offsets
             result.path_points = points
@@ -476,9 +482,6 @@ class Context:
         if isinstance(path, dict):
             # The library reads scene files: a dict goes through one, beside the files
             # it names, and is removed afterwards.
-            import json
-            import os
-            import tempfile
             with tempfile.NamedTemporaryFile("w", suffix=".json", dir=base_dir, delete=False) as f:
                 json.dump(path, f)
             try:
@@ -554,5 +557,15 @@ class Context:
         return handle
 
 
-# Defined beside the scenes they come from; Context.load_scene and render make them.
-from ._scenes import RenderResult, Scene, SceneField, _render_result  # noqa: E402,F401
+@contextlib.contextmanager
+def _owned_context(context=None):
+    """``with _owned_context(context) as ctx``: the caller's :class:`Context`, left open,
+    or (``context`` None) a new one on the default device, closed on leaving.  The one
+    helper behind every engine's ``context=None`` argument."""
+    if context is None:
+        with Context() as ctx:
+            yield ctx
+        return
+    if not isinstance(context, Context):
+        raise ArgumentError("context must be an arcus.Context or None, got %r" % (context,))
+    yield context

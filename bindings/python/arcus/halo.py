@@ -54,6 +54,7 @@ import numpy as np
 from . import rainbow
 from ._args import to_float, to_int, to_real_array
 from ._errors import ArgumentError
+from .context import _owned_context
 
 #: Length over corner-to-corner diameter of each shape.
 SHAPES = {"column": 2.0, "plate": 0.2}
@@ -386,12 +387,10 @@ def crystal_table(spec, wavelength, theta, phi=None, *, grid=GRID, max_bounces=M
     # the light (+z) in each crystal's frame: Rᵀ z
     exact = projected_areas(vertices, triangles, rotations[:, 2, :]) * spec["size"] ** 2
 
-    owned = context is None
-    ctx = rainbow._context(context)[0]
     directions, terms, powers = [], [], []
     remaining = lost = cast_area = 0.0
     query = np.zeros(1)
-    try:
+    with _owned_context(context) as ctx:
         for rotation, area in zip(rotations, exact):
             r = rainbow.phase_function(mesh, wavelength, query, grid=grid, max_bounces=max_bounces, material="ice",
                                        rotation=rotation, coherent=False, alpha=ALPHA, edge_rays=edge_rays,
@@ -407,9 +406,6 @@ def crystal_table(spec, wavelength, theta, phi=None, *, grid=GRID, max_bounces=M
                 directions.append(g["direction"])
                 terms.append(g["term"])
                 powers.append(g["cross_section"] * (area / cast))
-    finally:
-        if owned:
-            ctx.close()
     count = len(rotations)
     intercepted = float(exact.mean())
     d = np.concatenate(directions) if directions else np.zeros((0, 3))

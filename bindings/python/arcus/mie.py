@@ -16,10 +16,11 @@ against: the Debye term p is the light leaving after p − 1 internal reflection
 every wave effect (Airy rainbow, supernumeraries, interference).  Host code in the
 library (no context, no device).
 
-Units: the radius in metres, the wavelength in nanometres (in air), angles in degrees.
+Units: the radius in metres, the wavelength in nanometres (in vacuum; the air around
+the sphere has n = 1), angles in degrees.
 ``n`` is the sphere's index relative to air, real or complex ``n + iκ`` with κ ≥ 0
 (time dependence e^{−iωt}, Bohren & Huffman); None: water's real index at the
-wavelength and ``temperature`` (:func:`arcus.rainbow.refractive_index`).  Phase
+wavelength and ``temperature_k`` (:func:`arcus.rainbow.refractive_index`).  Phase
 functions are per steradian, normalised so that the whole sphere's ``unpolarized``
 integrates to 1; "parallel" is the |S2|² part, "perpendicular" the |S1|² part, for
 unpolarised incident light, and unpolarized their sum.
@@ -35,7 +36,7 @@ from . import _lib
 from ._args import to_float, to_int
 from ._errors import ArgumentError
 from ._lib import lib
-from .rainbow import _angles, refractive_index
+from .rainbow import _angles, refractive_index, water_temperature_k
 
 
 @dataclass(frozen=True, eq=False)
@@ -99,12 +100,12 @@ class DebyeResult:
     max_p: int
 
 
-def _inputs(radius, wavelength, theta, n, temperature):
+def _inputs(radius, wavelength, theta, n, temperature_k):
     radius = to_float(radius, "radius")
     wavelength = to_float(wavelength, "wavelength")
     theta = _angles(theta, "theta", 0.0, 180.0)
     if n is None:
-        n = complex(refractive_index("water", wavelength, temperature))
+        n = complex(refractive_index("water", wavelength, temperature_k))
     else:
         if isinstance(n, (bool, np.bool_)) or not isinstance(n, (int, float, complex, np.number)):
             raise ArgumentError("n must be a real or complex number (or None for water), got %r" % (n,))
@@ -121,17 +122,18 @@ def _complex(pairs, shape):
     return (pairs[0::2] + 1j * pairs[1::2]).reshape(shape)
 
 
-def phase_function(radius, wavelength, theta, n=None, temperature=20.0):
+def phase_function(radius, wavelength, theta, n=None, temperature_k=293.15, *, temperature=None):
     """Lorenz–Mie for a sphere of ``radius`` metres at ``wavelength`` nm and angles
     ``theta`` degrees: a :class:`MieResult` (phase functions, amplitudes S1 and S2,
     efficiencies).  ``n``: the relative index (complex allowed; None: water at
-    ``temperature`` °C)."""
-    radius, wavelength, theta, n = _inputs(radius, wavelength, theta, n, temperature)
+    ``temperature_k`` kelvin; ``temperature`` in °C is deprecated)."""
+    temperature_k = water_temperature_k(temperature_k, temperature)
+    radius, wavelength, theta, n = _inputs(radius, wavelength, theta, n, temperature_k)
     count = theta.size
     s1, s2 = np.zeros(2 * count), np.zeros(2 * count)
     par, perp = np.zeros(count), np.zeros(count)
     eff = _lib.MieEfficienciesStruct()
-    _lib.check(lib.arcus_mie(radius, wavelength, n.real, n.imag, count, _lib.ptr(theta), _lib.ptr(s1), _lib.ptr(s2),
+    _lib.check(lib.arcus_rainbow_mie(radius, wavelength, n.real, n.imag, count, _lib.ptr(theta), _lib.ptr(s1), _lib.ptr(s2),
                              _lib.ptr(par), _lib.ptr(perp), byref(eff)))
     return MieResult(theta=theta.copy(), parallel=par, perpendicular=perp, unpolarized=par + perp,
                      s1=_complex(s1, (count,)), s2=_complex(s2, (count,)), q_ext=eff.q_ext, q_sca=eff.q_sca,
@@ -139,16 +141,17 @@ def phase_function(radius, wavelength, theta, n=None, temperature=20.0):
                      radius=radius, wavelength=wavelength)
 
 
-def debye(radius, wavelength, theta, n=None, max_p=3, temperature=20.0):
+def debye(radius, wavelength, theta, n=None, max_p=3, temperature_k=293.15, *, temperature=None):
     """The Debye-series terms p = 0..``max_p`` of Lorenz–Mie for a sphere of ``radius``
     metres at ``wavelength`` nm and angles ``theta`` degrees: a :class:`DebyeResult`
     (arrays of shape (len(theta), max_p + 1))."""
-    radius, wavelength, theta, n = _inputs(radius, wavelength, theta, n, temperature)
+    temperature_k = water_temperature_k(temperature_k, temperature)
+    radius, wavelength, theta, n = _inputs(radius, wavelength, theta, n, temperature_k)
     max_p = to_int(max_p, "max_p", 0, 2 ** 32 - 1)
     count, terms = theta.size, max_p + 1
     s1, s2 = np.zeros(2 * count * terms), np.zeros(2 * count * terms)
     par, perp = np.zeros(count * terms), np.zeros(count * terms)
-    _lib.check(lib.arcus_mie_debye(radius, wavelength, n.real, n.imag, max_p, count, _lib.ptr(theta), _lib.ptr(s1),
+    _lib.check(lib.arcus_rainbow_mie_debye(radius, wavelength, n.real, n.imag, max_p, count, _lib.ptr(theta), _lib.ptr(s1),
                                    _lib.ptr(s2), _lib.ptr(par), _lib.ptr(perp)))
     par, perp = par.reshape(count, terms), perp.reshape(count, terms)
     return DebyeResult(theta=theta.copy(), parallel=par, perpendicular=perp, unpolarized=par + perp,

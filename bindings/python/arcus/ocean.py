@@ -17,15 +17,20 @@ Spectra are a number (flat), a pair ``(wavelengths_nm, values)`` or a dict with 
 """
 
 import ctypes
+import json
 import math
+import os
+import tempfile
 from ctypes import byref, c_double, c_int32, c_size_t, c_uint64, c_void_p
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import _lib
+from . import _lib, _scene_file
+from ._args import to_path
 from ._errors import ArgumentError
 from ._lib import lib
+from .context import _check_progress, _owned_context
 
 #: The ten events of the thesis' roulette (§4.2), in its order.
 EVENTS = ("absorb_water", "raman", "absorb_detritus", "absorb_phyto", "fluoresce_phyto", "absorb_cdom",
@@ -35,14 +40,6 @@ CONSTITUENTS = ("water", "detritus", "phytoplankton", "cdom")
 PRESETS = ("atlantic", "mediterranean", "baltic", "north_sea", "cdom_coastal")
 _PHASES = dict(isotropic=0, rayleigh_like=1, hg=2, two_term_hg=3, table=4)
 _LIGHTS = dict(point=0, spot=1, directional=2, sky=3)
-
-
-def _context(context):
-    """(context, owned): the caller's context, or a new one to close afterwards."""
-    if context is not None:
-        return context, False
-    from .context import Context
-    return Context(), True
 
 
 class _Keep:
@@ -194,8 +191,7 @@ class Water:
         :data:`EVENTS` order), ``absorption`` and ``scattering`` (4 × n, rows in
         :data:`CONSTITUENTS` order), ``extinction``."""
         g = _grid(grid)
-        ctx, owned = _context(context)
-        try:
+        with _owned_context(context) as ctx:
             handle = self._create(ctx)
             try:
                 n = g.count
@@ -204,9 +200,6 @@ class Water:
                                                             _lib.ptr(absorption), _lib.ptr(scattering)))
             finally:
                 lib.arcus_water_release(handle)
-        finally:
-            if owned:
-                ctx.close()
         return dict(wavelengths=g.first_nm + g.step_nm * np.arange(g.count), events=events, absorption=absorption,
                     scattering=scattering, extinction=events.sum(axis=0))
 
@@ -319,7 +312,6 @@ def trace_photons(water, light, photons=400_000, max_interactions=5, seed=1, *, 
     a plane-parallel column (needs the surface, or a box whose top is z = 0)."""
     if not isinstance(water, Water):
         raise ArgumentError("water: an arcus.ocean.Water, got %r" % (water,))
-    from .context import _check_progress
     _check_progress(progress)
     lights = list(light) if isinstance(light, (list, tuple)) else [light]
     keep = _Keep()
@@ -347,8 +339,7 @@ def trace_photons(water, light, photons=400_000, max_interactions=5, seed=1, *, 
     params.photons, params.max_interactions, params.seed = int(photons), int(max_interactions), int(seed)
     params.store_photons, params.force_inelastic = int(bool(store)), int(bool(force_inelastic))
 
-    ctx, owned = _context(context)
-    try:
+    with _owned_context(context) as ctx:
         handle = water._create(ctx)
         try:
             def start(callback, job_out):
@@ -361,9 +352,6 @@ def trace_photons(water, light, photons=400_000, max_interactions=5, seed=1, *, 
             return ctx._run_job(start, progress, False, "arcus_ocean_trace", reader=read)
         finally:
             lib.arcus_water_release(handle)
-    finally:
-        if owned:
-            ctx.close()
 
 
 def _read_trace(ctx, job, grid, depths, store):
@@ -456,7 +444,6 @@ def _read_image(ctx, job, exr, png, spectral_bands):
     ctx._check(lib.arcus_job_get_ocean_image(job, None, None, None, _lib.ptr(nm), _lib.ptr(rgb, ctypes.c_float),
                                              _lib.ptr(spec)))
     if exr is not None or png is not None:
-        from ._args import to_path
         ctx._check(lib.arcus_job_write_ocean_image(job, None if exr is None else to_path(exr, "exr"),
                                                     None if png is None else to_path(png, "png"),
                                                     int(bool(spectral_bands))))
@@ -482,10 +469,6 @@ def render(scene, *, photons=None, k=None, steps=None, estimator=None, exr=None,
     :class:`OceanImage`; writes ``exr`` (linear; with ``spectral``, a channel per
     wavelength) and ``png`` (sRGB) if given.  ``photons``, ``k``, ``steps``,
     ``estimator`` ("per_step" or "beam") override the scene's."""
-    import json
-    import os
-    import tempfile
-    from ._args import to_path
     overrides = dict(photons=photons, k=k, steps=steps, estimator=estimator)
     if isinstance(scene, dict) or any(v is not None for v in overrides.values()):
         # The library reads scene files: a dict, or a file with overrides, goes through
@@ -493,7 +476,6 @@ def render(scene, *, photons=None, k=None, steps=None, estimator=None, exr=None,
         if isinstance(scene, dict):
             doc = json.loads(json.dumps(scene))
         else:
-            from . import _scene_file
             doc = _scene_file.read(scene, ("ocean",))[1]  # read and checked by the library
         if photons is not None:
             doc.setdefault("photons", {})["count"] = int(photons)
@@ -511,10 +493,8 @@ def render(scene, *, photons=None, k=None, steps=None, estimator=None, exr=None,
             return render(f.name, exr=exr, png=png, spectral=spectral, progress=progress, context=context)
         finally:
             os.unlink(f.name)
-    from .context import _check_progress
     _check_progress(progress)
-    ctx, owned = _context(context)
-    try:
+    with _owned_context(context) as ctx:
         handle = c_void_p()
         ctx._check(lib.arcus_scene_load(ctx._handle, to_path(scene, "scene"), byref(handle)))
         try:
@@ -526,7 +506,4 @@ def render(scene, *, photons=None, k=None, steps=None, estimator=None, exr=None,
         finally:
             lib.arcus_scene_release(handle)
         return result
-    finally:
-        if owned:
-            ctx.close()
 

@@ -18,7 +18,8 @@ library casts a grid of rays at the particle, follows each through p = 0..P
 collects them on a sphere of patches that is queried at the directions asked for,
 adding the patches' phasors with their phases (interference) or their intensities.
 
-Units: metres for sizes, nanometres (in air) for wavelengths, degrees for angles.
+Units: metres for sizes, nanometres (in vacuum) for wavelengths, kelvin for
+temperatures, degrees for angles; the air around a particle has n = 1.
 Frame: the light travels along +z; a direction (θ, φ) has θ from +z (0: forward,
 180: straight back) and φ from +x toward +y.  Phase functions are per steradian,
 normalised so that the light scattered in p = 0..P integrates to 1 over the sphere;
@@ -29,6 +30,7 @@ Lorenz–Mie and its Debye series, the reference for spheres, are in :mod:`arcus
 """
 
 import math
+import warnings
 import weakref
 from ctypes import POINTER, byref, c_double, c_size_t, c_uint32, c_uint64, c_void_p
 from dataclasses import dataclass
@@ -39,6 +41,7 @@ from . import _lib
 from ._args import to_bool, to_choice, to_float, to_int, to_path, to_real_array
 from ._errors import ArgumentError
 from ._lib import lib
+from .context import _check_progress, _Handle, _owned_context
 
 #: arcus_material values by name.
 MATERIALS = dict(water=0, ice=1, fixed=2)
@@ -57,9 +60,21 @@ def _material(material, name="material"):
 # ---- refractive index ---------------------------------------------------------------
 
 
-def refractive_index(material="water", wavelength=550.0, temperature=20.0):
+def water_temperature_k(temperature_k, temperature=None):
+    """Water's temperature in kelvin, the unit of every arcus call; ``temperature`` is
+    the °C keyword of arcus 0.9, still accepted (with a DeprecationWarning) and
+    converted here, at the edge."""
+    if temperature is None:
+        return to_float(temperature_k, "temperature_k")
+    warnings.warn("temperature (°C) is deprecated since arcus 0.10: pass temperature_k in kelvin",
+                  DeprecationWarning, stacklevel=3)
+    return to_float(temperature, "temperature") + 273.15
+
+
+def refractive_index(material="water", wavelength=550.0, temperature_k=293.15, *, temperature=None):
     """The real refractive index of ``material`` ("water": IAPWS R9-97 at 1 atm and
-    ``temperature`` °C; "ice": ice Ih) relative to air at ``wavelength`` nm (in air).
+    ``temperature_k`` kelvin; "ice": ice Ih) at the vacuum wavelength ``wavelength`` nm,
+    relative to the air around it, taken as 1 (thesis §4.4.1.1).
 
     ``wavelength`` may be a number (a float comes back) or an array (an array of the
     same shape).  A wavelength or temperature outside the formulation's range raises
@@ -67,12 +82,12 @@ def refractive_index(material="water", wavelength=550.0, temperature=20.0):
     m = _material(material)
     if m == MATERIALS["fixed"]:
         raise ArgumentError("material: 'water' or 'ice' (a fixed index is simply a number), got %r" % (material,))
-    t = to_float(temperature, "temperature")
+    t = water_temperature_k(temperature_k, temperature)
     nm = to_real_array(wavelength, "wavelength")
     out = np.empty(nm.shape)
     n = c_double()
     for i, w in np.ndenumerate(nm):
-        _lib.check(lib.arcus_refractive_index(m, float(w), t, byref(n)))
+        _lib.check(lib.arcus_rainbow_refractive_index(m, float(w), t, byref(n)))
         out[i] = n.value
     return float(out) if out.ndim == 0 else out
 
@@ -96,7 +111,6 @@ class Particle:
 
     def _handle_on(self, ctx):
         """The library handle of this particle on ``ctx`` (an arcus.Context)."""
-        from .context import _Handle
         ctx_handle = ctx._handle
         state = ctx._state
         with state.lock:
@@ -113,13 +127,9 @@ class Particle:
         """What the library made of the particle: a dict with ``kind``,
         ``equivalent_radius`` (of the sphere of equal volume, m), ``volume`` (m³),
         ``bound_radius`` (m) and ``triangles`` (meshes)."""
-        ctx, owned = _context(context)
-        try:
+        with _owned_context(context) as ctx:
             s = _lib.ParticleInfoStruct()
             ctx._check(lib.arcus_particle_get_info(self._handle_on(ctx), byref(s)))
-        finally:
-            if owned:
-                ctx.close()
         d = {name: getattr(s, name) for name, _ in s._fields_}
         d["kind"] = PARTICLE_KINDS.get(s.kind, str(s.kind))
         return d
@@ -191,17 +201,6 @@ class Mesh(Particle):
 
     def __repr__(self):
         return "Mesh(%r, scale=%r, smooth=%r)" % (self.path, self.scale, self.smooth)
-
-
-def _context(context):
-    """(context, owned): the caller's context, or a new one to close afterwards."""
-    if context is not None:
-        from .context import Context
-        if not isinstance(context, Context):
-            raise ArgumentError("context must be an arcus.Context or None, got %r" % (context,))
-        return context, False
-    from .context import Context
-    return Context(), True
 
 
 # ---- the phase function -------------------------------------------------------------
@@ -286,9 +285,10 @@ def _rotation(rotation):
 
 
 def phase_function(particle, wavelength, theta, phi=None, grid=1000, max_bounces=3, polarization="unpolarized",
-                   alpha=0.3, edge_rays=True, material="water", temperature=20.0, refractive_index=None,
-                   rotation=None, coherent=True, caustics="uniform", incident=None, context=None, progress=None):
-    """The phase function of ``particle`` at ``wavelength`` nm (in air, one value) and
+                   alpha=0.3, edge_rays=True, material="water", temperature_k=293.15, refractive_index=None,
+                   rotation=None, coherent=True, caustics="uniform", incident=None, context=None, progress=None,
+                   *, temperature=None):
+    """The phase function of ``particle`` at ``wavelength`` nm (in vacuum, one value) and
     scattering angles ``theta`` degrees (0 forward, 180 back): a :class:`PhaseResult`.
 
     Args:
@@ -302,7 +302,8 @@ def phase_function(particle, wavelength, theta, phi=None, grid=1000, max_bounces
             "parallel" or "perpendicular" (all three are always computed).
         alpha: the grid's warp, eq. 4.27-4.28 (0.3; 1: uniform).
         edge_rays: move grid points just outside onto the projected edge (§4.4.3.1).
-        material: "water" (at ``temperature`` °C) or "ice"; ``refractive_index`` (a
+        material: "water" (at ``temperature_k`` kelvin; ``temperature``, in °C, is
+            the deprecated spelling of arcus 0.9) or "ice"; ``refractive_index`` (a
             number) overrides it with a fixed index at every wavelength.
         rotation: the particle's orientation, a 3x3 particle -> world rotation.
         coherent: add phasors with their phases (interference, eq. 4.31), or
@@ -337,7 +338,7 @@ def phase_function(particle, wavelength, theta, phi=None, grid=1000, max_bounces
     params = _lib.RainbowParamsStruct()
     _lib.check(lib.arcus_rainbow_params_init(byref(params)))
     params.wavelength_nm = wl
-    params.temperature_c = to_float(temperature, "temperature")
+    params.temperature_k = water_temperature_k(temperature_k, temperature)
     m = _material(material)
     if refractive_index is not None:
         if m != MATERIALS["water"] and m != MATERIALS["fixed"]:
@@ -366,9 +367,8 @@ def phase_function(particle, wavelength, theta, phi=None, grid=1000, max_bounces
         if not coherent or caustics != "uniform":
             raise ArgumentError("incident needs coherent=True and caustics='uniform'")
         ix, iy = ix / math.sqrt(power), iy / math.sqrt(power)
-    # arcus_job_rainbow_phase's mode: 0 intensities, 1 phasors with the uniform caustics, 2 plain phasors
+    # arcus_job_get_rainbow_phase's mode: 0 intensities, 1 phasors with the uniform caustics, 2 plain phasors
     mode = 0 if not coherent else {"uniform": 1, "rays": 2}[to_choice(caustics, "caustics", CAUSTICS)]
-    from .context import _check_progress
     _check_progress(progress)
 
     if two_d:
@@ -377,8 +377,7 @@ def phase_function(particle, wavelength, theta, phi=None, grid=1000, max_bounces
     else:
         q_theta, q_phi, shape = theta, np.full(theta.size, phis[0]), theta.shape
 
-    ctx, owned = _context(context)
-    try:
+    with _owned_context(context) as ctx:
         handle = particle._handle_on(ctx)
 
         def start(callback, job_out):
@@ -389,7 +388,7 @@ def phase_function(particle, wavelength, theta, phi=None, grid=1000, max_bounces
             terms = params.max_bounces + 1
             count = q_theta.size
             par, perp, per = np.zeros(count), np.zeros(count), np.zeros((count, terms))
-            ctx._check(lib.arcus_job_rainbow_phase(
+            ctx._check(lib.arcus_job_get_rainbow_phase(
                 job, count, _lib.ptr(q_theta), _lib.ptr(q_phi), mode, _lib.ptr(par), _lib.ptr(perp),
                 _lib.ptr(per)))
             s = _lib.RainbowStatsStruct()
@@ -405,7 +404,7 @@ def phase_function(particle, wavelength, theta, phi=None, grid=1000, max_bounces
             polarised = None
             if incident is not None:
                 raw = np.zeros(count * terms * 8)
-                ctx._check(lib.arcus_job_rainbow_phasors(job, count, _lib.ptr(q_theta), _lib.ptr(q_phi),
+                ctx._check(lib.arcus_job_get_rainbow_phasors(job, count, _lib.ptr(q_theta), _lib.ptr(q_phi),
                                                          _lib.ptr(raw)))
                 e = raw.reshape(count, terms, 4, 2).sum(axis=1)
                 e = e[..., 0] + 1j * e[..., 1]  # E_hθ, E_hφ, E_vθ, E_vφ
@@ -428,9 +427,6 @@ def phase_function(particle, wavelength, theta, phi=None, grid=1000, max_bounces
                                coherent=coherent, stats=stats, features=_lib.feature_names(bits.value))
 
         return ctx._run_job(start, progress, False, "arcus_rainbow_cast", reader=read)
-    finally:
-        if owned:
-            ctx.close()
 
 
 def rainbow_angle(n, p=2):
@@ -453,5 +449,7 @@ def rainbow_angle(n, p=2):
 def render(scene, **options):
     """Renders a rainbow sky (a scene dict or ``scenes/rainbow/*.json``): an
     :class:`arcus.sky.SkyImage`.  See :func:`arcus.sky.render` for the options."""
+    # Not a module-level alias: sky sits above sweep, which runs this module's phase functions
+    # (rainbow -> sky -> sweep -> rainbow would be an import circle).
     from .sky import render as render_sky
     return render_sky(scene, **options)

@@ -20,9 +20,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _lib, _scene_file
+from . import _lib, _scene_file, sweep
 from ._args import to_path
 from ._errors import ArgumentError
+from .context import _check_progress, _owned_context
 from .image import read as read_image
 from ._lib import lib
 
@@ -82,8 +83,7 @@ def load_scene(scene):
 def _axis(tables, key, default):
     """A table axis of a scene: a list, or {"linspace": [first, last, count]} or
     {"range": [first, last, step]} (as sweep specs write them)."""
-    from .sweep import spec_axis
-    values = np.asarray(spec_axis(tables.get(key, default), "tables." + key), dtype=float).ravel()
+    values = np.asarray(sweep.spec_axis(tables.get(key, default), "tables." + key), dtype=float).ravel()
     if values.size == 0 or not np.all(np.isfinite(values)) or np.any(np.diff(values) <= 0):
         raise ArgumentError("tables: '%s' must be finite and strictly increasing, got %r" % (key, tables.get(key)))
     return values
@@ -231,8 +231,6 @@ class VolumeTable:
 def volume_table(scene, *, cache_dir=None, client="serial", workers=None, progress=False):
     """Sums the populations' phase tables (from :func:`arcus.sweep.phase_tables`) into the
     rain's :class:`VolumeTable`."""
-    from . import sweep
-
     scene = load_scene(scene)
     tables = scene.get("tables", {})
     sun = scene.get("sun", {})
@@ -431,8 +429,6 @@ def render(scene, *, exr=None, png=None, table=None, width=None, height=None, su
     override the scene's.  Phase tables come from the sweep cache (``cache_dir``),
     computed where missing, here (``client="serial"``) or on a Dask client/address.
     ``base_dir``: where a dict's relative file names start (default: the current folder)."""
-    from .rainbow import _context
-
     base_dir = _scene_dir(scene) if base_dir is None else os.fspath(base_dir)
     scene = load_scene(scene)
     _check_sun(scene)
@@ -460,7 +456,6 @@ def render(scene, *, exr=None, png=None, table=None, width=None, height=None, su
             setattr(sky, key, value)
     for key, value in spectra.items():
         setattr(sky, key, _lib.ptr(value))
-    from .context import _check_progress
     _check_progress(progress)
 
     beta = np.ascontiguousarray(table.beta, dtype=float)
@@ -468,8 +463,7 @@ def render(scene, *, exr=None, png=None, table=None, width=None, height=None, su
     wl_c = np.ascontiguousarray(wl, dtype=float)
     t = _lib.RainbowTableStruct(len(wl_c), _lib.ptr(wl_c), len(table.theta), float(table.theta[0]),
                                 float(table.theta[-1]), len(table.phi), _lib.ptr(beta), _lib.ptr(ext))
-    ctx, owned = _context(context)
-    try:
+    with _owned_context(context) as ctx:
         t0 = time.perf_counter()
 
         def start(callback, job_out):
@@ -491,7 +485,4 @@ def render(scene, *, exr=None, png=None, table=None, width=None, height=None, su
 
         xyz, rgb, th, features = ctx._run_job(start, progress, False, "arcus_rainbow_render", reader=read)
         seconds = {"table": table.seconds, "render": time.perf_counter() - t0}
-    finally:
-        if owned:
-            ctx.close()
     return SkyImage(image=rgb, xyz=xyz, theta=th, table=table, features=features, seconds=seconds)

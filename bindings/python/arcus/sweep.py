@@ -48,6 +48,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
+from . import _scene_file, halo, mie, ocean, rainbow
 from ._args import to_bool, to_choice, to_float, to_int, to_real_array
 from ._errors import ArgumentError
 # The tasks' runner and their disk cache live in modules of their own; their public
@@ -61,7 +62,7 @@ from ._tasks import CACHE_FORMAT, CONNECT_TIMEOUT, TaskResults, _canonical, _pla
 MAX_AXIS_VALUES = 10 ** 6
 #: Particle kinds of :func:`phase_tables` and the keys each takes, with their defaults
 #: (``...``: required).
-_COMMON = dict(material="water", rotation=None, temperature=20.0)
+_COMMON = dict(material="water", rotation=None, temperature_k=293.15)
 PARTICLE_KEYS = dict(
     sphere=dict(radius=..., method="rays", **_COMMON),
     raindrop=dict(diameter=..., **_COMMON),
@@ -168,13 +169,14 @@ def _particle(spec, i):
     keys = PARTICLE_KEYS[kind]
     if keys is None:  # crystals: arcus.halo checks them and fills in their defaults
         try:
-            from . import halo
-        except ImportError:
-            raise ArgumentError("%s: kind 'crystal' needs arcus.halo, which this arcus lacks" % name) from None
-        try:
             return _plain(halo.normalise_spec(spec), name)
         except ArgumentError as exc:
             raise ArgumentError("%s: %s" % (name, exc.message)) from None
+    if "temperature" in spec:  # arcus 0.9's °C key, converted at the edge
+        if "temperature_k" in spec:
+            raise ArgumentError("%s: give temperature_k (kelvin) or the deprecated temperature (°C), not both" % name)
+        spec = dict(spec, temperature_k=rainbow.water_temperature_k(None, spec["temperature"]))
+        del spec["temperature"]
     unknown = set(spec) - set(keys) - {"kind"}
     if unknown:
         raise ArgumentError("%s: unknown key %s for a %s (expected %s)"
@@ -184,12 +186,11 @@ def _particle(spec, i):
         if key not in spec and default is ...:
             raise ArgumentError("%s: a %s needs %r" % (name, kind, key))
         out[key] = spec.get(key, default)
-    for key in ("radius", "diameter", "scale", "temperature"):
+    for key in ("radius", "diameter", "scale", "temperature_k"):
         if key in out:
             value = out[key] = to_float(out[key], "%s.%s" % (name, key))
-            positive = key != "temperature"
-            if not math.isfinite(value) or (positive and value <= 0):
-                raise ArgumentError("%s.%s must be a finite number%s, got %r" % (name, key, " > 0" * positive, value))
+            if not math.isfinite(value) or value <= 0:
+                raise ArgumentError("%s.%s must be a finite number > 0, got %r" % (name, key, value))
     out["material"] = to_choice(out["material"], name + ".material", dict(water="water", ice="ice"))
     if out["rotation"] is not None:
         r = to_real_array(out["rotation"], name + ".rotation")
@@ -231,10 +232,9 @@ def _wavelengths(values):
 
 def _phi(phi):
     """None, one azimuth (a float) or a 1-D array, as phase_function takes them."""
-    from .rainbow import _angles
     if phi is None:
         return None
-    angles = _angles(phi, "phi", None, None)
+    angles = rainbow._angles(phi, "phi", None, None)
     return float(angles[0]) if np.ndim(phi) == 0 else angles
 
 
@@ -245,13 +245,11 @@ def _phase_task(task):
     phi = np.array(task["phi"], dtype=np.float64) if isinstance(task["phi"], list) else task["phi"]
     kind = spec["kind"]
     if kind == "crystal":
-        from . import halo  # imported only where crystals are asked for
         r = halo.crystal_table(spec, wl, theta, phi, grid=grid, max_bounces=bounces, context=_worker_context())
         return {k: r[k] for k in ("phase", "cross_section", "extinction", "intercepted", "remaining")}
-    from . import mie, rainbow
     if kind == "sphere" and spec["method"] == "mie":
-        n = None if spec["material"] == "water" else rainbow.refractive_index(spec["material"], wl, spec["temperature"])
-        m = mie.phase_function(spec["radius"], wl, theta, n=n, temperature=spec["temperature"])
+        n = None if spec["material"] == "water" else rainbow.refractive_index(spec["material"], wl, spec["temperature_k"])
+        m = mie.phase_function(spec["radius"], wl, theta, n=n, temperature_k=spec["temperature_k"])
         phase = m.unpolarized if np.ndim(phi) == 0 else np.broadcast_to(m.unpolarized, (len(phi), theta.size)).copy()
         area = math.pi * spec["radius"] ** 2
         return dict(phase=phase, cross_section=m.q_sca * area, extinction=m.q_ext * area, intercepted=area,
@@ -263,7 +261,7 @@ def _phase_task(task):
     else:
         particle = rainbow.Mesh(spec["path"], scale=spec["scale"], smooth=spec["smooth"])
     r = rainbow.phase_function(particle, wl, theta, phi, grid=grid, max_bounces=bounces, material=spec["material"],
-                               temperature=spec["temperature"], rotation=spec["rotation"], context=_worker_context())
+                               temperature_k=spec["temperature_k"], rotation=spec["rotation"], context=_worker_context())
     intercepted = r.stats["intercepted"]
     return dict(phase=np.ascontiguousarray(r.unpolarized.T),  # (T,) stays; (T, F) -> (F, T)
                 cross_section=intercepted * float(np.sum(r.stats["scattered"])), extinction=2.0 * intercepted,
@@ -284,7 +282,8 @@ def phase_tables(particles, wavelengths, theta, phi=None, *, grid=1000, max_boun
             | "mie"}``, ``{"kind": "raindrop", "diameter": m}``, ``{"kind": "mesh",
             "path": file, "scale": 1.0, "smooth": True}``, each optionally with
             ``"rotation"`` (3x3, particle -> world), ``"material"`` ("water", "ice") and
-            ``"temperature"`` (°C); or ``{"kind": "crystal", ...}`` for
+            ``"temperature_k"`` (kelvin; ``"temperature"`` in °C is the deprecated key
+            of arcus 0.9); or ``{"kind": "crystal", ...}`` for
             :func:`arcus.halo.crystal_table`.  Mie ignores rotation and phi.
         phi: None (azimuth 0), one azimuth, or an array: tables over φ × θ.
         grid, max_bounces: the cast's rays per side and terms p = 0..P
@@ -294,8 +293,7 @@ def phase_tables(particles, wavelengths, theta, phi=None, *, grid=1000, max_boun
         raise ArgumentError("particles must be a non-empty list of particle dicts, got %r" % (particles,))
     specs = [_particle(p, i) for i, p in enumerate(particles)]
     wl = _wavelengths(wavelengths)
-    from .rainbow import _angles
-    theta = _angles(theta, "theta", 0.0, 180.0)
+    theta = rainbow._angles(theta, "theta", 0.0, 180.0)
     phi = _phi(phi)
     grid = to_int(grid, "grid", 4, 8192)
     max_bounces = to_int(max_bounces, "max_bounces", 0, 15)
@@ -337,7 +335,6 @@ def _scene(scene, name):
         return _plain(scene, name), None
     if not isinstance(scene, (str, os.PathLike)):
         raise ArgumentError("%s must be a scene file or a dict, got %r" % (name, scene))
-    from . import _scene_file
     _, doc = _scene_file.read(scene, ("ocean", "render"), name)  # read and checked by the library
     return doc, os.path.dirname(os.path.abspath(scene))
 
@@ -377,7 +374,6 @@ class OceanGrid(_Archive):
 
 def _ocean_task(task):
     """One water of :func:`ocean_grid`: the ocean scene's view, linear sRGB."""
-    from . import ocean
     image = ocean.render(task["scene"], context=_worker_context(), **task["overrides"]).image
     return dict(image=image)
 
@@ -538,7 +534,6 @@ def load_spec(path):
     library, as the dict :func:`run_spec` takes: an unknown or repeated key, a wrong
     type, an axis of more than MAX_AXIS_VALUES values or a file that is not a regular
     file raise :class:`arcus.Error` naming the file and the key."""
-    from . import _scene_file
     return _scene_file.read(path, ("sweep",), "spec")[1]
 
 

@@ -10,12 +10,13 @@ with status 2; a tool's own failure keeps its exit status.
 import argparse
 import sys
 
+from .. import __version__
+from . import gallery, info, render, tools
+
 EXIT_BAD_INPUT = 2
 
 
 def parser():
-    from .. import __version__
-    from . import gallery, info, render, tools
     p = argparse.ArgumentParser(prog="arcus", description="Light transport in participating media: curved light "
                                 "and mirages, underwater light, rainbows and halos (docs/cli.md).")
     p.add_argument("--version", action="version", version="arcus %s" % __version__)

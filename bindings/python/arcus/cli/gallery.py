@@ -14,6 +14,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .._scene_file import read
 from ..progress import Progress
 from . import page, resources
 
@@ -71,7 +72,6 @@ BENCH_STEPS = [
 
 def description(scene):
     """A bundled scene's own description: what it shows, and the thesis figure."""
-    from .._scene_file import read
     return read(resources.scene(scene), ("render", "ocean", "rainbow", "curved"))[1].get("description", "")
 
 

@@ -10,6 +10,7 @@ import shutil
 from pathlib import Path
 
 from .. import __version__, devices
+from . import resources
 
 STYLE = """body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222;background:#fafafa}
 h1{margin-bottom:0}.meta{color:#666}section{margin-top:2em}figure{display:inline-block;vertical-align:top;
@@ -85,7 +86,6 @@ Media</i>. %(mode)s, made %(date)s in %(seconds).0f s on %(machine)s.</p>
 
 def copy_docs_images(root, steps):
     """Copies each engine's picture to docs/images/ of the source tree (the README's)."""
-    from . import resources
     target = resources.share_dir() / "docs" / "images"
     target.mkdir(parents=True, exist_ok=True)
     for step in steps:

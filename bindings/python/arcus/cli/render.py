@@ -2,13 +2,15 @@
 through curved light, an ocean scene, a rainbow sky — to the formats the output names
 ask for (.png, .jpg, .exr, .hdr)."""
 
+import argparse
 import shutil
 import tempfile
 import time
 from pathlib import Path
 
-from .. import _scene_file, image
+from .. import _scene_file, image, ocean, sky
 from .._errors import ArgumentError
+from ..context import Context
 from ..progress import Progress
 from . import resources
 
@@ -57,7 +59,6 @@ def add(sub):
 
 
 def _raw():
-    import argparse
     return argparse.RawDescriptionHelpFormatter
 
 
@@ -91,7 +92,6 @@ def run(args):
                             % (path, engine, "trace" if engine == "curved" else "sweep", args.scene))
     name = doc.get("name") or path.stem
     outputs = outputs_of(args, name)
-    from ..context import Context
     started = time.monotonic()
     with Context(_device(args.device)) as ctx, tempfile.TemporaryDirectory(prefix="arcus-render-") as tmp:
         exr, png = Path(tmp) / "image.exr", Path(tmp) / "image.png"
@@ -151,7 +151,6 @@ def render_curved(ctx, path, doc, args, exr, png, bar):
 
 
 def render_ocean(ctx, path, doc, args, exr, png, bar):
-    from .. import ocean
     for flag in RAINBOW_ONLY:
         _refuse(args, flag, "ocean", "it applies to rainbow skies")
     camera = doc["view"]["camera"]
@@ -182,7 +181,6 @@ def quick_rainbow(doc):
 
 
 def render_rainbow(ctx, path, doc, args, exr, png, bar):
-    from .. import sky
     _refuse(args, "photons", "rainbow", "a sky is marched, not photon-mapped")
     img = doc.get("image", {})
     width = args.width or _scaled(img.get("width", 800), args.quick)

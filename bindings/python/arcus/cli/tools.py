@@ -7,6 +7,7 @@ import os
 import subprocess
 import sys
 
+from .._scene_file import read
 from . import resources
 
 # command: (how it runs, words before the scene argument, help)
@@ -69,7 +70,6 @@ def _trace_folder(extra):
     """Where arcus_trace wrote: --out DIR, else out/<the scene's name>."""
     if "--out" in extra and extra.index("--out") + 1 < len(extra):
         return extra[extra.index("--out") + 1]
-    from .._scene_file import read
     scene = next(w for w in extra if not w.startswith("-"))
     return os.path.join("out", read(scene, ("curved",))[1].get("name", "scene"))
 
