@@ -219,11 +219,11 @@ struct Trace {
   V3 dir(size_t i) const { return {directions[3 * i], directions[3 * i + 1], directions[3 * i + 2]}; }
 };
 
-// Runs arcus_advance and reads back every end state (when a job came back).
+// Runs arcus_curved_advance and reads back every end state (when a job came back).
 inline Trace trace(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params& params, const Rays& rays) {
   Trace t;
   arcus_job_t* job = nullptr;
-  t.status = arcus_advance(ctx, field, &params, rays.size(), rays.origins.data(), rays.directions.data(), nullptr, &job);
+  t.status = arcus_curved_advance(ctx, field, &params, rays.size(), rays.origins.data(), rays.directions.data(), nullptr, &job);
   t.job.reset(job);
   if (!job) return t;
   size_t count = 0;
@@ -234,9 +234,9 @@ inline Trace trace(arcus_context_t* ctx, arcus_field_t* field, const arcus_advan
   t.lengths.assign(count, 0.0);
   t.steps.assign(count, 0);
   t.ray_status.assign(count, -1);
-  EXPECT_EQ(arcus_job_get_end_states(job, t.positions.data(), t.directions.data(), t.steps.data(),
-                                     t.ray_status.data(), t.lengths.data()),
-            ARCUS_SUCCESS);
+  EXPECT_EQ(arcus_job_get_curved_end_states(job, t.positions.data(), t.directions.data(), t.steps.data(),
+                                            t.ray_status.data(), t.lengths.data()),
+                                            ARCUS_SUCCESS);
   EXPECT_EQ(arcus_job_get_features(job, &t.features), ARCUS_SUCCESS);
   return t;
 }
