@@ -65,6 +65,13 @@
 #define ARCUS_INLINE static inline __attribute__((always_inline)) /* PoCL left big helpers out of line */
 #define ARCUS_GLOBAL __global
 
+/* A kernel's parameters, "type name, ...", from its argument list: an X-macro of
+ * X(type, name) in its *_desc.h, whose names the host binds by (src/core/launch.h). */
+#define ARCUS_PARAM_(type, name) , type name
+#define ARCUS_REST_(first, ...) __VA_ARGS__
+#define ARCUS_REST(...) ARCUS_REST_(__VA_ARGS__)
+#define ARCUS_PARAMS(LIST) ARCUS_REST(LIST(ARCUS_PARAM_))
+
 /* The groups of a work-item advance in lockstep, one stage at a time for all of them,
  * so each stage offers ARCUS_GROUPS independent dependency chains to the core (a single
  * chain is latency-bound: measured 3× slower).  FOR_N loops over the first n groups

@@ -76,6 +76,12 @@ void KernelCall::set_raw(unsigned index, size_t size, const void* value) {
   check_cl(clSetKernelArg(kernel_.get(), index, size, value), "clSetKernelArg");
 }
 
+unsigned KernelCall::arg_count() const {
+  cl_uint n = 0;
+  check_cl(clGetKernelInfo(kernel_.get(), CL_KERNEL_NUM_ARGS, sizeof n, &n, nullptr), "clGetKernelInfo");
+  return n;
+}
+
 double KernelCall::run(arcus_context_t* ctx, size_t items) {
   const size_t local = local_work_size(ctx);
   cl_event raw = nullptr;

@@ -50,12 +50,13 @@ class KernelCall {
   void set_value(unsigned index, const T& value) {
     set_raw(index, sizeof value, &value);
   }
+  void set_raw(unsigned index, size_t size, const void* value);
+  unsigned arg_count() const;  // CL_KERNEL_NUM_ARGS: kept in program binaries too
   // Runs `items` work-items (local size: local_work_size) and waits; returns the device
   // time from the profiling events.
   double run(arcus_context_t* ctx, size_t items);
 
  private:
-  void set_raw(unsigned index, size_t size, const void* value);
   ClKernel kernel_;
   std::string name_;
 };
