@@ -136,6 +136,17 @@ ARCUS_DECLARE_OCEAN_PHASES(arcus_ocean_phases, double, int32_t);
 ARCUS_DECLARE_OCEAN_DESC(arcus_ocean_desc, arcus_ocean_phases, double, int32_t, uint64_t);
 #endif
 
+/* The tracer's arguments, X(type, name) (ARCUS_PARAMS; src/core/launch.h). */
+#define ARCUS_OCEAN_TRACE_ARGS(X)   \
+  X(__global const REAL*, water)    \
+  X(__global const REAL*, lights)   \
+  X(__global const REAL*, emission) \
+  X(__global const REAL*, depths)   \
+  X(const ocean_desc, d)            \
+  X(__global REAL*, tallies)        \
+  X(__global REAL*, depth_tallies)  \
+  X(__global REAL*, stored)
+
 /* Ray marching (thesis §4.1.4, §4.2): the camera, the march and the estimate.  The
  * `optics` buffer holds, per grid sample m (n of them): σ_t, exp(−σ_t Δt),
  * exp(−σ_t Δt/2), the three scatterers' σ_s (3·n), then the phase tables.  Per light
@@ -163,5 +174,26 @@ ARCUS_DECLARE_OCEAN_RENDER_DESC(ocean_render_desc, ocean_phases, REAL, int);
 #else
 ARCUS_DECLARE_OCEAN_RENDER_DESC(arcus_ocean_render_desc, arcus_ocean_phases, double, int32_t);
 #endif
+
+/* The renderer's arguments, and those of the beam estimate's photon radii: the map
+ * (photon/photon_desc.h), or its photons under a BVH of their spheres (render.cl). */
+#define ARCUS_OCEAN_RENDER_ARGS(X)          \
+  X(__global const REAL*, optics)           \
+  X(__global const REAL*, lights)           \
+  X(__global const REAL*, light_tables)     \
+  X(__global const bvh_node*, nodes)        \
+  X(__global const REAL*, photons)          \
+  X(const photon_map_desc, map)             \
+  X(__global const REAL*, radii)            \
+  X(const ocean_render_desc, rd)            \
+  X(__global REAL*, radiance)               \
+  X(__global REAL*, scratch)
+#define ARCUS_OCEAN_RADII_ARGS(X)    \
+  X(__global const bvh_node*, nodes) \
+  X(__global const REAL*, photons)   \
+  X(const photon_map_desc, map)      \
+  X(const int, k)                    \
+  X(const int, chunk)                \
+  X(__global REAL*, radii)
 
 #endif /* ARCUS_OCEAN_DESC_H */

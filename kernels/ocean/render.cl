@@ -65,11 +65,7 @@ ARCUS_INLINE REAL ocean_photon_phase(const ocean_phases* p, __global const REAL*
 
 #define OCEAN_MAP(c, slot) PHOTON(photons, map, c, slot)
 
-__kernel void arcus_ocean_render(__global const REAL* optics, __global const REAL* lights,
-                                 __global const REAL* light_tables, __global const bvh_node* nodes,
-                                 __global const REAL* photons, const photon_map_desc map,
-                                 __global const REAL* radii, const ocean_render_desc rd,
-                                 __global REAL* radiance, __global REAL* scratch) {
+__kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
   const int pixel = rd.first_pixel + (int)get_global_id(0);
   if (pixel >= rd.end_pixel) return;
   const int n = rd.count;
@@ -207,9 +203,7 @@ __kernel void arcus_ocean_render(__global const REAL* optics, __global const REA
  * consecutive slots, neighbours in the map's BVH order: the last one's radius plus the
  * distance moved bounds this one's (triangle inequality), which prunes the search and
  * loses none of the k nearest. */
-__kernel void arcus_ocean_photon_radii(__global const bvh_node* nodes, __global const REAL* photons,
-                                       const photon_map_desc map, const int k, const int chunk,
-                                       __global REAL* radii) {
+__kernel void arcus_ocean_photon_radii(ARCUS_PARAMS(ARCUS_OCEAN_RADII_ARGS)) {
   const int first = (int)get_global_id(0) * chunk;
   REAL d2[ARCUS_PHOTON_MAX_K];
   int slot[ARCUS_PHOTON_MAX_K];

@@ -231,9 +231,7 @@ ARCUS_INLINE REAL ocean_enter_water(const ocean_desc* d, REAL3* dir) {
   return T;
 }
 
-__kernel void arcus_ocean_trace(__global const REAL* water, __global const REAL* lights,
-                                __global const REAL* emission, __global const REAL* depths, const ocean_desc d,
-                                __global REAL* tallies, __global REAL* depth_tallies, __global REAL* stored) {
+__kernel void arcus_ocean_trace(ARCUS_PARAMS(ARCUS_OCEAN_TRACE_ARGS)) {
   const int r = (int)get_global_id(0);
   if (r >= d.rows) return;
   const ocean_desc* dp = &d;

@@ -10,7 +10,7 @@
 #include "core/context.h"
 #include "core/error.h"
 #include "core/features.h"
-#include "core/slices.h"
+#include "core/launch.h"
 #include "image/image_io.h"
 #include "photon/photon_map.h"
 #include "scene/common_keys.h"  // the pinhole camera's checks, shared
@@ -19,6 +19,9 @@
 
 namespace arcus::ocean {
 namespace {
+
+ARCUS_KERNEL_ARGS(RenderArg, "arcus_ocean_render", ARCUS_OCEAN_RENDER_ARGS);
+ARCUS_KERNEL_ARGS(RadiiArg, "arcus_ocean_photon_radii", ARCUS_OCEAN_RADII_ARGS);
 
 constexpr double kPi = 3.14159265358979323846;
 // Rows of the light tables over distance: linear interpolation between rows 1/1023 of
@@ -264,9 +267,10 @@ std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const WaterTables& w, co
   const BuiltProgram built = ctx->runtime->program(render_source(), render_features(w, march), layout);
   job->stats.build_seconds += built.seconds;
   const size_t pixels = size_t(camera.width) * camera.height;
-  DeviceBuffer optics_dev(ctx, optics.size() * sizeof(double), "the water's optics", optics.data());
-  DeviceBuffer lights_dev(ctx, light_buf.size() * sizeof(double), "the lights", light_buf.data());
-  DeviceBuffer tables_dev(ctx, tables.size() * sizeof(double), "the light tables", tables.data());
+  Launch<RenderArg> launch(ctx, built.program);
+  launch.upload(RenderArg::optics, optics, "the water's optics");
+  launch.upload(RenderArg::lights, light_buf, "the lights");
+  launch.upload(RenderArg::light_tables, tables, "the light tables");
   DeviceBuffer radiance_dev(ctx, pixels * n * sizeof(double), "the spectral image");
   DeviceBuffer scratch_dev(ctx, std::min<size_t>(pixels, kMaxSlicePixels) * n * sizeof(double), "the transmittances");
 
@@ -284,12 +288,14 @@ std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const WaterTables& w, co
     const auto tb = std::chrono::steady_clock::now();
     const size_t count = map->size();
     DeviceBuffer radii(ctx, count * sizeof(double), "the photons' radii");
-    KernelCall rk(built.program, "arcus_ocean_photon_radii");
-    photon::set_map_arguments(rk, 0, *map);
-    rk.set_value(3, int32_t(march.k));
-    rk.set_value(4, int32_t(kRadiiChunk));
-    rk.set(5, &radii);
-    rk.run(ctx, (count + kRadiiChunk - 1) / kRadiiChunk);
+    Launch<RadiiArg> rk(ctx, built.program);
+    rk.bind(RadiiArg::nodes, map->nodes());
+    rk.bind(RadiiArg::photons, map->photons());
+    rk.bind_value(RadiiArg::map, map->desc());
+    rk.bind_value(RadiiArg::k, int32_t(march.k));
+    rk.bind_value(RadiiArg::chunk, int32_t(kRadiiChunk));
+    rk.bind(RadiiArg::radii, &radii);
+    rk.run((count + kRadiiChunk - 1) / kRadiiChunk);
     std::vector<double> r_slot(count);
     radii.read(ctx, 0, count * sizeof(double), r_slot.data());
     // The map's photons (slot order, structure of arrays) read back once.
@@ -319,36 +325,25 @@ std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const WaterTables& w, co
   }
 
   const auto te = std::chrono::steady_clock::now();
-  KernelCall kernel(built.program, "arcus_ocean_render");
-  kernel.set(0, &optics_dev);
-  kernel.set(1, &lights_dev);
-  kernel.set(2, &tables_dev);
-  kernel.set(3, nodes_arg);
-  kernel.set(4, photons_arg);
-  kernel.set_value(5, map_desc);
-  kernel.set(6, radii_dev.get());
-  kernel.set(8, &radiance_dev);
-  kernel.set(9, &scratch_dev);
-  int64_t done = 0;
-  SliceJob slices;
-  slices.first_units = 64;
-  slices.launch = [&](int64_t units, bool) {
-    const int64_t count = std::clamp<int64_t>(units, 1, kMaxSlicePixels);
-    d.first_pixel = static_cast<int32_t>(done);
-    d.end_pixel = static_cast<int32_t>(std::min<int64_t>(done + count, int64_t(pixels)));
-    kernel.set_value(7, d);
-    const double s = kernel.run(ctx, size_t(d.end_pixel - d.first_pixel));
-    done = d.end_pixel;
-    return s;
-  };
-  slices.finished = [&] { return done >= int64_t(pixels); };
-  slices.fraction = [&] { return double(done) / double(pixels); };
+  launch.bind(RenderArg::nodes, nodes_arg);
+  launch.bind(RenderArg::photons, photons_arg);
+  launch.bind_value(RenderArg::map, map_desc);
+  launch.bind(RenderArg::radii, radii_dev.get());
+  launch.bind(RenderArg::radiance, &radiance_dev);
+  launch.bind(RenderArg::scratch, &scratch_dev);
   StageProgress stage{progress, user, march.multiple_scattering ? kTraceShare : 0.0,
                       march.multiple_scattering ? 1 - kTraceShare : 1.0};
+  // A slice: pixels [first, end), at most the transmittances' rows.
+  SliceRange slices{pixels, 64, kMaxSlicePixels};
   slices.progress = progress ? &StageProgress::call : nullptr;
   slices.progress_user = &stage;
   arcus_job_stats render_run{};
-  *cancelled = run_in_slices(slices, &render_run);
+  *cancelled = launch.run_slices(slices, [&](uint64_t first, uint64_t end) {
+    d.first_pixel = static_cast<int32_t>(first);
+    d.end_pixel = static_cast<int32_t>(end);
+    launch.bind_value(RenderArg::rd, d);
+    return size_t(end - first);
+  }, &render_run);
   job->stats.kernel_seconds += render_run.kernel_seconds;
   job->stats.launches += render_run.launches;
   job->render_stats.estimate_seconds += seconds_since(te);

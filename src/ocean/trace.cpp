@@ -10,13 +10,14 @@
 #include "core/context.h"
 #include "core/error.h"
 #include "core/features.h"
-#include "core/slices.h"
+#include "core/launch.h"
 #include "ocean/ocean_desc.h"  // kernels/ocean/ocean_desc.h: shared with the kernel
 
 namespace arcus::ocean {
 namespace {
 
 static_assert(sizeof(arcus_ocean_desc) % 8 == 0, "ocean_desc must pack alike on host and device");
+ARCUS_KERNEL_ARGS(TraceArg, "arcus_ocean_trace", ARCUS_OCEAN_TRACE_ARGS);
 
 constexpr double kPi = 3.14159265358979323846;
 // Photons per work-item in the first slice (slices then size themselves).
@@ -307,12 +308,15 @@ void trace_into(TraceJob* job, arcus_context_t* ctx, const WaterTables& water, c
                               sizeof(double),
                           "a trace of " + std::to_string(params.photons) + " photons");
 
-  DeviceBuffer water_dev(ctx, water_buf.size() * sizeof(double), "the water's tables", water_buf.data());
-  DeviceBuffer lights_dev(ctx, light_buf.size() * sizeof(double), "the lights", light_buf.data());
-  DeviceBuffer cdf_dev(ctx, cdf.size() * sizeof(double), "the lights' emission", cdf.data());
+  const Layout layout{1, 1};  // scalar: one photon at a time per work-item (trace.cl)
+  const BuiltProgram built = build_job_program(ctx, *job, trace_source(), layout);
+  Launch<TraceArg> launch(ctx, built.program);
+  launch.upload(TraceArg::water, water_buf, "the water's tables");
+  launch.upload(TraceArg::lights, light_buf, "the lights");
+  launch.upload(TraceArg::emission, cdf, "the lights' emission");
   std::vector<double> depths = params.depths;
   if (depths.empty()) depths.push_back(0);
-  DeviceBuffer depths_dev(ctx, depths.size() * sizeof(double), "the tally depths", depths.data());
+  launch.upload(TraceArg::depths, depths, "the tally depths");
   std::vector<double> zeros(rows * tally_reals, 0.0);
   DeviceBuffer tallies_dev(ctx, zeros.size() * sizeof(double), "the tallies", zeros.data());
   std::vector<double> depth_zeros(std::max<size_t>(rows * depth_reals, 1), 0.0);
@@ -321,36 +325,21 @@ void trace_into(TraceJob* job, arcus_context_t* ctx, const WaterTables& water, c
   if (store_slots) stored.assign(store_slots * ARCUS_OCEAN_PHOTON_REALS, 0.0);
   if (stored.empty()) stored.push_back(0);
   DeviceBuffer stored_dev(ctx, stored.size() * sizeof(double), "the stored photons", stored.data());
-
-  const Layout layout{1, 1};  // scalar: one photon at a time per work-item (trace.cl)
-  const BuiltProgram built = build_job_program(ctx, *job, trace_source(), layout);
-  KernelCall kernel(built.program, "arcus_ocean_trace");
-  kernel.set(0, &water_dev);
-  kernel.set(1, &lights_dev);
-  kernel.set(2, &cdf_dev);
-  kernel.set(3, &depths_dev);
-  kernel.set(5, &tallies_dev);
-  kernel.set(6, &depth_dev);
-  kernel.set(7, &stored_dev);
-
-  uint64_t done = 0;
-  SliceJob slices;
-  slices.first_units = kFirstSlicePhotons * static_cast<double>(rows);
-  slices.launch = [&](int64_t units, bool) {
-    d.first_photon = done;
-    d.end_photon = std::min<uint64_t>(params.photons, done + static_cast<uint64_t>(std::max<int64_t>(units, 1)));
-    kernel.set_value(4, d);
-    const double s = kernel.run(ctx, rows);
-    done = d.end_photon;
-    return s;
-  };
-  slices.finished = [&] { return done >= params.photons; };
-  slices.fraction = [&] { return static_cast<double>(done) / static_cast<double>(params.photons); };
-  slices.progress = progress;
-  slices.progress_user = user;
-  *cancelled = run_in_slices(slices, &job->stats);
+  launch.bind(TraceArg::tallies, &tallies_dev);
+  launch.bind(TraceArg::depth_tallies, &depth_dev);
+  launch.bind(TraceArg::stored, &stored_dev);
+  // A slice: photons [first, end), a tally row a work-item.
+  SliceRange photons{params.photons, kFirstSlicePhotons * static_cast<double>(rows)};
+  photons.progress = progress;
+  photons.progress_user = user;
+  *cancelled = launch.run_slices(photons, [&](uint64_t first, uint64_t end) {
+    d.first_photon = first;
+    d.end_photon = end;
+    launch.bind_value(TraceArg::d, d);
+    return rows;
+  }, &job->stats);
   job->trace_seconds = job->stats.kernel_seconds;
-  job->count = done;
+  job->count = photons.done;
 
   // The rows, summed in row order.
   std::vector<double> rows_out(rows * tally_reals);
