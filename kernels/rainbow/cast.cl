@@ -10,9 +10,7 @@
  *
  * Host prepends: common/real.h, bvh/bvh_desc.h, bvh/traverse.h, rainbow/rainbow_desc.h,
  * rainbow/optics.h. */
-__kernel void arcus_rainbow_cast(__global const bvh_node* nodes, __global const REAL* tris, __global const int* order,
-                                 __global const REAL* normals, __global const REAL* points, const rainbow_cast_desc d,
-                                 const int rays, __global REAL* records, __global REAL* left) {
+__kernel void arcus_rainbow_cast(ARCUS_PARAMS(ARCUS_RAINBOW_CAST_ARGS)) {
   const int r = d.first + (int)get_global_id(0);
   if (r >= d.first + d.count) return;
   rb_mesh m;

@@ -74,10 +74,7 @@ ARCUS_INLINE void rb_bilinear_coordinates(const REAL* c0, const REAL* c1, const 
   *t = clamp(*t, RC(0), RC(1));
 }
 
-__kernel void arcus_rainbow_query(__global const bvh_node* nodes, __global const REAL* tris,
-                                  __global const int* order, __global const REAL* corners,
-                                  __global const rainbow_patch* patches, __global const REAL* dirs,
-                                  const rainbow_query_desc q, __global REAL* out) {
+__kernel void arcus_rainbow_query(ARCUS_PARAMS(ARCUS_RAINBOW_QUERY_ARGS)) {
   const int i = (int)get_global_id(0);
   if (i >= q.count) return;
   __global REAL* o = out + (size_t)i * (size_t)q.terms * ARCUS_RAINBOW_QUERY_REALS;

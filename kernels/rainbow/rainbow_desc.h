@@ -53,6 +53,20 @@ ARCUS_DECLARE_RAINBOW_CAST(rainbow_cast_desc, REAL, int);
 ARCUS_DECLARE_RAINBOW_CAST(rainbow_cast_desc, double, int32_t);
 #endif
 
+/* The cast kernel's arguments, X(type, name) (ARCUS_PARAMS; src/core/launch.h): the
+ * mesh's BVH (NULL for other shapes), its vertex normals, the (u, v) grid, the cast,
+ * and what each ray leaves. */
+#define ARCUS_RAINBOW_CAST_ARGS(X)  \
+  X(__global const bvh_node*, nodes) \
+  X(__global const REAL*, tris)      \
+  X(__global const int*, order)      \
+  X(__global const REAL*, normals)   \
+  X(__global const REAL*, points)    \
+  X(const rainbow_cast_desc, d)      \
+  X(const int, rays)                 \
+  X(__global REAL*, records)         \
+  X(__global REAL*, left)
+
 /* A patch on the collecting sphere (thesis §4.4.3.2, Fig. 4.19): the four corner
  * records of one term p at grid corners (i, j), (i+1, j), (i+1, j+1), (i, j+1), in that
  * order.  The host has normalised the corners' amplitudes by eq. 4.29 and turned their
@@ -76,6 +90,18 @@ ARCUS_DECLARE_RAINBOW_QUERY(rainbow_query_desc, REAL, int);
 #else
 ARCUS_DECLARE_RAINBOW_QUERY(rainbow_query_desc, double, int32_t);
 #endif
+
+/* The query kernel's arguments: the patches' chord BVH, their corners, the patches,
+ * the directions, the query and the sums. */
+#define ARCUS_RAINBOW_QUERY_ARGS(X)          \
+  X(__global const bvh_node*, nodes)         \
+  X(__global const REAL*, tris)              \
+  X(__global const int*, order)              \
+  X(__global const REAL*, corners)           \
+  X(__global const rainbow_patch*, patches)  \
+  X(__global const REAL*, dirs)              \
+  X(const rainbow_query_desc, q)             \
+  X(__global REAL*, out)
 
 /* A patch corner for the queries: direction (3), the four phasors (8) normalised by
  * eq. 4.29 and turned by −π/2 per focal line, optical path (1), focal lines (1). */
@@ -108,5 +134,21 @@ ARCUS_DECLARE_RAINBOW_SKY(rainbow_sky_desc, REAL, int);
 #else
 ARCUS_DECLARE_RAINBOW_SKY(rainbow_sky_desc, double, int32_t);
 #endif
+
+/* The sky kernel's arguments: the disc-averaged table, the spectra (extinction, sun,
+ * sky, ground), the sky image behind each pixel and its spectra, the colour weights,
+ * the render, and the XYZ and θ images. */
+#define ARCUS_RAINBOW_SKY_ARGS(X)        \
+  X(__global const REAL*, beta)          \
+  X(__global const REAL*, extinction)    \
+  X(__global const REAL*, sun)           \
+  X(__global const REAL*, sky)           \
+  X(__global const REAL*, ground)        \
+  X(__global const float*, sky_rgb)      \
+  X(__global const REAL*, sky_basis)     \
+  X(__global const REAL*, weights)       \
+  X(const rainbow_sky_desc, s)           \
+  X(__global float*, xyz)                \
+  X(__global float*, theta_out)
 
 #endif /* ARCUS_RAINBOW_DESC_H */

@@ -61,11 +61,7 @@ REAL sky_beta(__global const REAL* beta, const rainbow_sky_desc* s, int l, REAL 
 #endif
 }
 
-__kernel void arcus_rainbow_sky(__global const REAL* beta, __global const REAL* extinction,
-                                __global const REAL* sun, __global const REAL* sky, __global const REAL* ground,
-                                __global const float* sky_rgb, __global const REAL* sky_basis,
-                                __global const REAL* weights, const rainbow_sky_desc s, __global float* xyz,
-                                __global float* theta_out) {
+__kernel void arcus_rainbow_sky(ARCUS_PARAMS(ARCUS_RAINBOW_SKY_ARGS)) {
   const int item = get_global_id(0);
   if (item >= s.count) return;
   const int pixel = s.first + item;

@@ -18,7 +18,7 @@
 #include "core/job.h"
 #include "core/kernel_source.h"
 #include "core/runtime.h"
-#include "core/slices.h"
+#include "core/launch.h"
 
 // The host traces single rays too (the bisection onto the projected edge) with the
 // kernels' own code, every shape compiled in.
@@ -41,6 +41,9 @@ const FeatureTable kTable{"rainbow",
                            {ARCUS_FEATURE_RAINBOW_MESH, "RAINBOW_MESH", "-D ARCUS_USE_RAINBOW_MESH"},
                            {ARCUS_FEATURE_RAINBOW_AZIMUTH, "RAINBOW_AZIMUTH", "-D ARCUS_USE_RAINBOW_AZIMUTH"}}};
 const FeatureTableEntry kRegistered(&kTable);
+
+ARCUS_KERNEL_ARGS(CastArg, "arcus_rainbow_cast", ARCUS_RAINBOW_CAST_ARGS);
+ARCUS_KERNEL_ARGS(QueryArg, "arcus_rainbow_query", ARCUS_RAINBOW_QUERY_ARGS);
 
 const KernelSource kCast{"rainbow/cast",
                          {"common/real.h", "bvh/bvh_desc.h", "bvh/traverse.h", "rainbow/rainbow_desc.h",
@@ -254,43 +257,30 @@ std::unique_ptr<RainbowJob> cast(arcus_context_t* ctx, const Particle& particle,
     rec.terms = terms;
     rec.data.assign(size_t(terms) * total * R, 0.0);
     left.assign(size_t(total), -1.0);
-    DeviceBuffer pts_dev(ctx, pts.size() * sizeof(double), "the cast grid", pts.data());
+    Launch<CastArg> launch(ctx, built.program);
+    launch.upload(CastArg::points, pts, "the cast grid");
     DeviceBuffer rec_dev(ctx, rec.data.size() * sizeof(double), "the traced rays");
     DeviceBuffer left_dev(ctx, left.size() * sizeof(double), "the rays' remaining power");
-    KernelCall k(built.program, "arcus_rainbow_cast");
-    if (mesh_bvh) {
-      k.set(0, mesh_bvh->nodes().get());
-      k.set(1, mesh_bvh->triangles().get());
-      k.set(2, mesh_bvh->order_buffer().get());
-    } else {
-      k.set(0, nullptr);
-      k.set(1, nullptr);
-      k.set(2, nullptr);
-    }
-    k.set(3, normals_dev.get());
-    k.set(4, &pts_dev);
-    k.set_value(6, int32_t(total));
-    k.set(7, &rec_dev);
-    k.set(8, &left_dev);
-    int64_t done = 0;
-    SliceJob s;
-    s.first_units = 65536;
-    s.launch = [&](int64_t units, bool) {
-      rainbow_cast_desc d = desc;
-      d.first = static_cast<int32_t>(done);
-      d.count = static_cast<int32_t>(std::min<int64_t>(units, total - done));
-      k.set_value(5, d);
-      const double secs = k.run(ctx, size_t(d.count));
-      done += d.count;
-      return secs;
-    };
-    s.finished = [&] { return done >= total; };
-    s.fraction = [&] { return double(done) / total; };
+    launch.bind(CastArg::nodes, mesh_bvh ? mesh_bvh->nodes().get() : nullptr);
+    launch.bind(CastArg::tris, mesh_bvh ? mesh_bvh->triangles().get() : nullptr);
+    launch.bind(CastArg::order, mesh_bvh ? mesh_bvh->order_buffer().get() : nullptr);
+    launch.bind(CastArg::normals, normals_dev.get());
+    launch.bind_value(CastArg::rays, int32_t(total));
+    launch.bind(CastArg::records, &rec_dev);
+    launch.bind(CastArg::left, &left_dev);
+    // A slice: rays [first, end), one a work-item.
+    SliceRange slices{uint64_t(total), 65536};
     if (sliced) {
-      s.progress = progress;
-      s.progress_user = progress_user;
+      slices.progress = progress;
+      slices.progress_user = progress_user;
     }
-    const bool stop = run_in_slices(s, &job->stats);
+    const bool stop = launch.run_slices(slices, [&](uint64_t first, uint64_t end) {
+      rainbow_cast_desc d = desc;
+      d.first = static_cast<int32_t>(first);
+      d.count = static_cast<int32_t>(end - first);
+      launch.bind_value(CastArg::d, d);
+      return size_t(d.count);
+    }, &job->stats);
     rec_dev.read(ctx, 0, rec.data.size() * sizeof(double), rec.data.data());
     left_dev.read(ctx, 0, left.size() * sizeof(double), left.data());
     return stop;
@@ -554,21 +544,21 @@ std::vector<double> query(arcus_context_t* ctx, RainbowJob& job, const std::vect
   const BuiltProgram built = ctx->runtime->program(kQuery, 0, Layout{1, 1});
   DeviceBuffer dirs_dev(ctx, dirs.size() * sizeof(double), "the query directions", dirs.data());
   DeviceBuffer out_dev(ctx, out.size() * sizeof(double), "the query sums");
-  KernelCall k(built.program, "arcus_rainbow_query");
-  k.set(0, job.bvh->nodes().get());
-  k.set(1, job.bvh->triangles().get());
-  k.set(2, job.bvh->order_buffer().get());
-  k.set(3, job.corners.get());
-  k.set(4, job.patches.get());
-  k.set(5, &dirs_dev);
+  Launch<QueryArg> k(ctx, built.program);
+  k.bind(QueryArg::nodes, job.bvh->nodes().get());
+  k.bind(QueryArg::tris, job.bvh->triangles().get());
+  k.bind(QueryArg::order, job.bvh->order_buffer().get());
+  k.bind(QueryArg::corners, job.corners.get());
+  k.bind(QueryArg::patches, job.patches.get());
+  k.bind(QueryArg::dirs, &dirs_dev);
   rainbow_query_desc q{};
   q.wave_number = job.wave_number;
   q.count = static_cast<int32_t>(count);
   q.terms = job.terms;
   q.coherent = uniform ? 1 : 0;
-  k.set_value(6, q);
-  k.set(7, &out_dev);
-  k.run(ctx, count);
+  k.bind_value(QueryArg::q, q);
+  k.bind(QueryArg::out, &out_dev);
+  k.run(count);
   out_dev.read(ctx, 0, out.size() * sizeof(double), out.data());
   job.info.query_seconds += seconds_since(t0);
   return out;

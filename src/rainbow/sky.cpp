@@ -14,7 +14,7 @@
 #include "core/job.h"
 #include "core/kernel_source.h"
 #include "core/runtime.h"
-#include "core/slices.h"
+#include "core/launch.h"
 #include "geometry/vec3.h"
 #include "image/image_io.h"
 #include "rainbow/rainbow_desc.h"
@@ -27,6 +27,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180;
 constexpr double kGoldenAngle = 2.39996322972865332;  // π(3 − √5): the sunflower's turn
+
+ARCUS_KERNEL_ARGS(SkyArg, "arcus_rainbow_sky", ARCUS_RAINBOW_SKY_ARGS);
 
 const KernelSource kSky{"rainbow/sky", {"common/real.h", "rainbow/rainbow_desc.h", "rainbow/sky.cl"}, ""};
 
@@ -260,13 +262,13 @@ std::unique_ptr<SkyJob> render_sky(arcus_context_t* ctx, const arcus_rainbow_tab
     for (int c = 0; c < 3; ++c) weights[3 * l + c] = bands[l][c];
   const Layout layout{1, 1};  // scalar: a pixel per work-item (sky.cl)
   const BuiltProgram built = build_job_program(ctx, *job, kSky, layout);
-  DeviceBuffer beta_dev(ctx, beta.size() * sizeof(double), "the disc-averaged table", beta.data());
-  DeviceBuffer ext_dev(ctx, L * sizeof(double), "the extinction", t.extinction);
-  DeviceBuffer sun_dev(ctx, L * sizeof(double), "the sun's irradiance", s.sun_irradiance);
-  DeviceBuffer sky_dev(ctx, L * sizeof(double), "the sky's radiance", s.sky_radiance ? s.sky_radiance : zeros.data());
-  DeviceBuffer ground_dev(ctx, L * sizeof(double), "the ground's radiance",
-                          s.ground_radiance ? s.ground_radiance : zeros.data());
-  DeviceBuffer weights_dev(ctx, weights.size() * sizeof(double), "the colour weights", weights.data());
+  Launch<SkyArg> launch(ctx, built.program);
+  launch.upload(SkyArg::beta, beta, "the disc-averaged table");
+  launch.upload(SkyArg::extinction, t.extinction, L, "the extinction");
+  launch.upload(SkyArg::sun, s.sun_irradiance, L, "the sun's irradiance");
+  launch.upload(SkyArg::sky, s.sky_radiance ? s.sky_radiance : zeros.data(), L, "the sky's radiance");
+  launch.upload(SkyArg::ground, s.ground_radiance ? s.ground_radiance : zeros.data(), L, "the ground's radiance");
+  launch.upload(SkyArg::weights, weights, "the colour weights");
   // The sky image (if any): its colour behind each pixel and the spectra that colour mixes.
   d.sky_image = s.sky_image != nullptr;
   std::vector<float> sky_rgb(3, 0.0f);
@@ -278,37 +280,22 @@ std::unique_ptr<SkyJob> render_sky(arcus_context_t* ctx, const arcus_rainbow_tab
       for (int c = 0; c < 3; ++c) sky_basis[3 * l + c] = basis[l][c];
     sky_rgb = sky_behind_pixels(s, d);
   }
-  DeviceBuffer sky_rgb_dev(ctx, sky_rgb.size() * sizeof(float), "the sky image behind the pixels", sky_rgb.data());
-  DeviceBuffer sky_basis_dev(ctx, sky_basis.size() * sizeof(double), "the sky image's spectra", sky_basis.data());
+  launch.upload(SkyArg::sky_rgb, sky_rgb, "the sky image behind the pixels");
+  launch.upload(SkyArg::sky_basis, sky_basis, "the sky image's spectra");
   DeviceBuffer xyz_dev(ctx, pixels * 3 * sizeof(float), "the XYZ image");
   DeviceBuffer theta_dev(ctx, pixels * sizeof(float), "the scattering angles");
-  KernelCall k(built.program, "arcus_rainbow_sky");
-  k.set(0, &beta_dev);
-  k.set(1, &ext_dev);
-  k.set(2, &sun_dev);
-  k.set(3, &sky_dev);
-  k.set(4, &ground_dev);
-  k.set(5, &sky_rgb_dev);
-  k.set(6, &sky_basis_dev);
-  k.set(7, &weights_dev);
-  k.set(9, &xyz_dev);
-  k.set(10, &theta_dev);
-  int64_t done = 0;
-  SliceJob slices;
-  slices.first_units = 4096;
-  slices.launch = [&](int64_t units, bool) {
-    d.first = static_cast<int32_t>(done);
-    d.count = static_cast<int32_t>(std::min<int64_t>(std::max<int64_t>(units, 1), int64_t(pixels) - done));
-    k.set_value(8, d);
-    const double secs = k.run(ctx, size_t(d.count));
-    done += d.count;
-    return secs;
-  };
-  slices.finished = [&] { return done >= int64_t(pixels); };
-  slices.fraction = [&] { return double(done) / double(pixels); };
+  launch.bind(SkyArg::xyz, &xyz_dev);
+  launch.bind(SkyArg::theta_out, &theta_dev);
+  // A slice: pixels [first, end), one a work-item.
+  SliceRange slices{pixels, 4096};
   slices.progress = s.progress;
   slices.progress_user = s.progress_user;
-  *cancelled = run_in_slices(slices, &job->stats);
+  *cancelled = launch.run_slices(slices, [&](uint64_t first, uint64_t end) {
+    d.first = static_cast<int32_t>(first);
+    d.count = static_cast<int32_t>(end - first);
+    launch.bind_value(SkyArg::s, d);
+    return size_t(d.count);
+  }, &job->stats);
 
   job->xyz.resize(pixels * 3);
   job->theta.resize(pixels);
