@@ -386,11 +386,7 @@ __kernel void arcus_curved_advance(__global const REAL* rays_in, __global const 
     VSTORE(h[g], v, REAL_STATE(ARCUS_STATE_H));
 #endif
 #ifdef ARCUS_USE_GEOMETRY
-    VSTORE_I(hs[g].kind, v, HIT_INT(ARCUS_HIT_KIND));
-    VSTORE_I(hs[g].index, v, HIT_INT(ARCUS_HIT_INDEX));
-    VSTORE_I(hs[g].tests, v, HIT_INT(ARCUS_HIT_TESTS));
-    VSTORE_I(hs[g].predict, v, HIT_INT(ARCUS_HIT_PREDICT));
-    VSTORE_I(hs[g].step, v, HIT_INT(ARCUS_HIT_STEP));
+    hit_state_store(hs[g], v, hit_ints, stride);
 #endif
   }
 }

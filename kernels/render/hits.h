@@ -30,6 +30,16 @@ typedef struct hit_state {
   IDXV kind, index, tests, predict, step;
 } hit_state;
 
+/* Stores lane group v of the rays' hit records (render_desc.h: `stride` entries a
+ * component): the advance's at the end of a slice, the walk's at its end. */
+ARCUS_INLINE void hit_state_store(hit_state h, size_t v, __global int* hit_ints, size_t stride) {
+  VSTORE_I(h.kind, v, hit_ints + ARCUS_HIT_KIND * stride);
+  VSTORE_I(h.index, v, hit_ints + ARCUS_HIT_INDEX * stride);
+  VSTORE_I(h.tests, v, hit_ints + ARCUS_HIT_TESTS * stride);
+  VSTORE_I(h.predict, v, hit_ints + ARCUS_HIT_PREDICT * stride);
+  VSTORE_I(h.step, v, hit_ints + ARCUS_HIT_STEP * stride);
+}
+
 #define ARCUS_STATE_REALS 7 /* x y z vx vy vz s */
 
 /* The skipped steps' net points of each lane of a group, since the last proof. */

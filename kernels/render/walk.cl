@@ -266,11 +266,7 @@ __kernel void arcus_walk(__global const REAL* paths, const int slots, __global c
     VSTORE(y[g].vz, v, out + 5 * stride);
     VSTORE(s[g], v, out + 6 * stride);
     VSTORE_I(status[g], v, out_status);
-    VSTORE_I(hs[g].kind, v, HIT_INT(ARCUS_HIT_KIND));
-    VSTORE_I(hs[g].index, v, HIT_INT(ARCUS_HIT_INDEX));
-    VSTORE_I(hs[g].tests, v, HIT_INT(ARCUS_HIT_TESTS));
-    VSTORE_I(hs[g].predict, v, HIT_INT(ARCUS_HIT_PREDICT));
-    VSTORE_I(hs[g].step, v, HIT_INT(ARCUS_HIT_STEP));
+    hit_state_store(hs[g], v, hit_ints, stride);
   }
 }
 
