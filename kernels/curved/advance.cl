@@ -101,19 +101,10 @@ ARCUS_INLINE void ray_store(ray6 r, __global REAL* p, size_t v, size_t stride) {
 }
 
 #ifdef ARCUS_USE_GEOMETRY
-/* The scene (bvh/bvh_desc.h, render/render_desc.h), each ray's hit record, and the
- * predicted hit steps of smart step selection (NULL: none). */
-#define GEOMETRY_PARAMS                                                                                         \
-  , __global const bvh_node *nodes, __global const REAL *tris, __global const shape *shapes,                  \
-      const geometry_desc geo, __global int *hit_ints, __global const int *predictions
 #define HIT_INT(c) (hit_ints + (c) * stride)
-#else
-#define GEOMETRY_PARAMS
 #endif
 
-__kernel void arcus_curved_advance(__global const REAL* rays_in, __global const REAL* wavelengths, __global REAL* state,
-                            __global int* istate, __global REAL* path, const field_desc field,
-                            __global const REAL* field_data, const advance_desc job GEOMETRY_PARAMS) {
+__kernel void arcus_advance(ARCUS_PARAMS(ARCUS_ADVANCE_ARGS)) {
   const size_t first_vector = get_global_id(0) * ARCUS_GROUPS;
   const size_t stride = (size_t)job.stride;
 #define REAL_STATE(c) (state + (c) * stride)

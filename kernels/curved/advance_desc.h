@@ -71,4 +71,34 @@ ARCUS_DECLARE_ADVANCE_DESC(arcus_advance_desc_d, double, int32_t);
 ARCUS_DECLARE_ADVANCE_DESC(arcus_advance_desc_f, float, int32_t);
 #endif
 
+/* The advance kernel's arguments, X(type, name) (ARCUS_PARAMS; src/core/launch.h): the
+ * rays, their wavelengths (NULL: none), the state and the recorded paths, then the
+ * field and the job, as the renderer's walk takes them too, then the geometry. */
+#define ARCUS_ADVANCE_ARGS(X)          \
+  X(__global const REAL*, rays_in)     \
+  X(__global const REAL*, wavelengths) \
+  X(__global REAL*, state)             \
+  X(__global int*, istate)             \
+  X(__global REAL*, path)              \
+  ARCUS_FIELD_JOB_ARGS(X)              \
+  ARCUS_GEOMETRY_ARGS(X)
+#define ARCUS_FIELD_JOB_ARGS(X)          \
+  X(const field_desc, field)             \
+  X(__global const REAL*, field_data)    \
+  X(const advance_desc, job)
+/* The renderer's per-step hook (ARCUS_USE_GEOMETRY, render/hits.h): the scene
+ * (bvh/bvh_desc.h, render/render_desc.h), each ray's hit record, and the predicted hit
+ * steps of smart step selection (NULL: none).  The host knows them always. */
+#if defined(ARCUS_USE_GEOMETRY) || !defined(__OPENCL_C_VERSION__)
+#define ARCUS_GEOMETRY_ARGS(X)         \
+  X(__global const bvh_node*, nodes)   \
+  X(__global const REAL*, tris)        \
+  X(__global const shape*, shapes)     \
+  X(const geometry_desc, geo)          \
+  X(__global int*, hit_ints)           \
+  X(__global const int*, predictions)
+#else
+#define ARCUS_GEOMETRY_ARGS(X)
+#endif
+
 #endif /* ARCUS_ADVANCE_DESC_H */

@@ -62,4 +62,30 @@ ARCUS_DECLARE_SHAPE(arcus_shape_f, float, int32_t);
 ARCUS_DECLARE_GEOMETRY_DESC(arcus_geometry_desc, double, int32_t);
 #endif
 
+/* The walk's arguments, X(type, name) (ARCUS_PARAMS; src/core/launch.h; walk.cl says
+ * what they hold), and those of the capsules' proofs. */
+#define ARCUS_WALK_ARGS(X)                \
+  X(__global const REAL*, paths)          \
+  X(const int, slots)                     \
+  X(__global const int*, counts)          \
+  X(__global const int*, end_status)      \
+  X(__global const int*, rays)            \
+  X(const int, ray_count)                 \
+  X(const REAL4, plane4)                  \
+  X(__global const REAL*, wavelengths)    \
+  X(__global REAL*, out)                  \
+  X(__global int*, out_status)            \
+  X(__global const REAL*, radii)          \
+  X(const int, chunks)                    \
+  ARCUS_FIELD_JOB_ARGS(X)                 \
+  ARCUS_GEOMETRY_ARGS(X)
+#define ARCUS_PATH_CAPSULES_ARGS(X) \
+  X(__global const REAL*, paths)    \
+  X(const int, slots)               \
+  X(__global const int*, counts)    \
+  X(const int, count)               \
+  X(const int, chunks)              \
+  X(const int, per_item)            \
+  X(__global REAL*, radii)
+
 #endif /* ARCUS_RENDER_DESC_H */

@@ -43,8 +43,7 @@ ARCUS_INLINE void walk_state_at(__global const REAL* paths, int slots, int q, in
  * that holds the points between, or -1 where the chunk lies past the path's end.
  * `per_item` paths a work-item (it runs once per cache; few work-items keep PoCL's
  * per-group cost small). */
-__kernel void arcus_path_capsules(__global const REAL* paths, const int slots, __global const int* counts,
-                                  const int count, const int chunks, const int per_item, __global REAL* radii) {
+__kernel void arcus_path_capsules(ARCUS_PARAMS(ARCUS_PATH_CAPSULES_ARGS)) {
   const int q0 = (int)get_global_id(0) * per_item;
   for (int q = q0; q < min(count, q0 + per_item); ++q) {
     for (int c = 0; c < chunks; ++c) {
@@ -132,12 +131,7 @@ ARCUS_INLINE void walk_load(__global const REAL* paths, int slots, __global cons
   *s = VLOAD(0, c[6]);
 }
 
-__kernel void arcus_walk(__global const REAL* paths, const int slots, __global const int* counts,
-                         __global const int* end_status, __global const int* rays, const int ray_count,
-                         const REAL4 plane4, __global const REAL* wavelengths, __global REAL* out,
-                         __global int* out_status, __global const REAL* radii, const int chunks,
-                         const field_desc field, __global const REAL* field_data,
-                         const advance_desc job GEOMETRY_PARAMS) {
+__kernel void arcus_walk(ARCUS_PARAMS(ARCUS_WALK_ARGS)) {
   const size_t first_vector = get_global_id(0) * ARCUS_GROUPS;
   const size_t stride = (size_t)job.stride;
   const REAL plane[4] = {plane4.x, plane4.y, plane4.z, plane4.w};

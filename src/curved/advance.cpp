@@ -11,8 +11,6 @@
 #include "core/error.h"
 #include "core/limits.h"
 #include "core/format.h"
-#include "core/slices.h"
-#include "curved/advance_desc.h"  // kernels/curved/advance_desc.h: shared with the kernel
 #include "curved/fields.h"
 
 namespace arcus::curved {
@@ -291,15 +289,15 @@ bool run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
     dev.path = std::make_unique<DeviceBuffer>(ctx, static_cast<size_t>(path_bytes), "record_path");
   DeviceBuffer* data = field_data_on_device(ctx, field, single);
 
-  KernelCall kernel(program, "arcus_curved_advance");
-  kernel.set(0, dev.input.get());
-  kernel.set(1, dev.wavelengths.get());
-  kernel.set(2, dev.state.get());
-  kernel.set(3, dev.istate.get());
-  kernel.set(4, dev.path.get());
-  kernel.set_value(5, field_desc_as<FieldDesc>(field->desc));
-  kernel.set(6, data);
-  if (ext && ext->set_args) ext->set_args(kernel, 8, stride, single);
+  Launch<AdvanceArg> launch(ctx, program);
+  launch.bind(AdvanceArg::rays_in, dev.input.get());
+  launch.bind(AdvanceArg::wavelengths, dev.wavelengths.get());
+  launch.bind(AdvanceArg::state, dev.state.get());
+  launch.bind(AdvanceArg::istate, dev.istate.get());
+  launch.bind(AdvanceArg::path, dev.path.get());
+  launch.bind_value(AdvanceArg::field, field_desc_as<FieldDesc>(field->desc));
+  launch.bind(AdvanceArg::field_data, data);
+  if (ext && ext->bind_args) ext->bind_args(launch, stride, single);
 
   // Slices: up to `units` steps of every ray (fixed) or attempts (DP45) per launch.
   std::vector<int32_t> status(stride);
@@ -312,8 +310,8 @@ bool run(arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params&
     desc.first_slice = first ? 1 : 0;
     desc.slice_begin = done;
     desc.slice_end = plan.dp45 ? n : static_cast<int32_t>(std::min<int64_t>(int64_t(done) + n, desc.fixed_steps));
-    kernel.set_value(7, desc);
-    const double seconds = kernel.run(ctx, items);
+    launch.bind_value(AdvanceArg::job, desc);
+    const double seconds = launch.run(items);
     if (!plan.dp45) done = desc.slice_end;
     return seconds;
   };
@@ -409,16 +407,18 @@ DeviceBuffer* field_data_on_device(arcus_context_t* ctx, arcus_field_t* field, b
   return data.get();
 }
 
-void set_field_and_job(KernelCall& kernel, unsigned field_arg, unsigned job_arg, arcus_context_t* ctx,
-                       arcus_field_t* field, const arcus_advance_params& p, const Plan& plan, size_t stride) {
+void bind_field_and_job(KernelLaunch& launch, unsigned field_arg, unsigned data_arg, unsigned job_arg,
+                        arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params& p, const Plan& plan,
+                        size_t stride) {
+  auto bind = [&](unsigned arg, const auto& value) { launch.bind_bytes(arg, sizeof value, &value); };
   if (plan.single) {
-    kernel.set_value(field_arg, field_desc_as<arcus_field_desc_f>(field->desc));
-    kernel.set_value(job_arg, make_advance_desc<arcus_advance_desc_f, float>(p, field->desc, plan, stride));
+    bind(field_arg, field_desc_as<arcus_field_desc_f>(field->desc));
+    bind(job_arg, make_advance_desc<arcus_advance_desc_f, float>(p, field->desc, plan, stride));
   } else {
-    kernel.set_value(field_arg, field_desc_as<arcus_field_desc_d>(field->desc));
-    kernel.set_value(job_arg, make_advance_desc<arcus_advance_desc_d, double>(p, field->desc, plan, stride));
+    bind(field_arg, field_desc_as<arcus_field_desc_d>(field->desc));
+    bind(job_arg, make_advance_desc<arcus_advance_desc_d, double>(p, field->desc, plan, stride));
   }
-  kernel.set(field_arg + 1, field_data_on_device(ctx, field, plan.single));
+  launch.bind_buffer(data_arg, field_data_on_device(ctx, field, plan.single));
 }
 
 namespace {

@@ -12,11 +12,15 @@
 #include "core/features.h"
 #include "core/job.h"
 #include "core/kernel_source.h"
+#include "core/launch.h"
 #include "core/layout.h"
 #include "curved/params.h"
+#include "curved/advance_desc.h"  // kernels/curved/advance_desc.h: shared with the kernel
 #include "curved/field.h"  // kernels/curved/field.h: the field description shared with the kernels
 
 namespace arcus::curved {
+
+ARCUS_KERNEL_ARGS(AdvanceArg, "arcus_advance", ARCUS_ADVANCE_ARGS);
 
 // The curved engine's feature table and kernel source (features.cpp).
 const FeatureTable& feature_table();
@@ -63,21 +67,22 @@ Plan plan_advance(const arcus_advance_params& params, const arcus_field_desc_d& 
 // kept with the field); null for a field without data.
 DeviceBuffer* field_data_on_device(arcus_context_t* ctx, arcus_field_t* field, bool single);
 
-// Sets a kernel's field description, field data (field_arg + 1) and job description
-// (job_arg) as the advance kernel takes them: for other kernels of the same program
-// (the renderer's walk over stored paths).
-void set_field_and_job(KernelCall& kernel, unsigned field_arg, unsigned job_arg, arcus_context_t* ctx,
-                       arcus_field_t* field, const arcus_advance_params& params, const Plan& plan, size_t stride);
+// Binds a kernel's field description, field data and job description as the advance
+// kernel takes them (ARCUS_FIELD_JOB_ARGS): for other kernels of the same program (the
+// renderer's walk over stored paths), which name their indices.
+void bind_field_and_job(KernelLaunch& launch, unsigned field_arg, unsigned data_arg, unsigned job_arg,
+                        arcus_context_t* ctx, arcus_field_t* field, const arcus_advance_params& params,
+                        const Plan& plan, size_t stride);
 
 // What another engine adds to an advance (the renderer's per-step hook against its
 // geometry, render/hits.h): features and the kernel source that compiles them, kernel
-// arguments after the advance kernel's own, and a look at its buffers after the run.
+// arguments (the geometry's), and a look at its buffers after the run.
 // `stride` is the entries per component of the ray buffers.
 struct AdvanceExtension {
   arcus_features features = 0;
   const KernelSource* source = nullptr;  // includes curved/advance.cl after the hook
   uint32_t record_components = 3;        // reals per recorded path point (x y z)
-  std::function<void(KernelCall& kernel, unsigned first_arg, size_t stride, bool single)> set_args;
+  std::function<void(Launch<AdvanceArg>& launch, size_t stride, bool single)> bind_args;
   std::function<void(size_t stride, bool single)> finished;  // after the last slice
   // The recorded paths (record_path), as the kernel wrote them: count × capacity ×
   // record_components reals, ray by ray; with record_components 7 (whole states,

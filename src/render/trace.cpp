@@ -13,6 +13,10 @@
 namespace arcus::render {
 namespace {
 
+using curved::AdvanceArg;
+ARCUS_KERNEL_ARGS(WalkArg, "arcus_walk", ARCUS_WALK_ARGS);
+ARCUS_KERNEL_ARGS(CapsulesArg, "arcus_path_capsules", ARCUS_PATH_CAPSULES_ARGS);
+
 // The hit records the kernels left (render_desc.h layout, `stride` entries per
 // component) as objects and primitives of the scene.
 void fill_hits(const RenderScene* scene, const bvh::DeviceBvh* bvh, const std::vector<int32_t>& hit_ints, size_t stride,
@@ -53,12 +57,13 @@ void use_bounds(const RenderScene* scene, arcus_advance_params* p) {
   }
 }
 
-// The geometry arguments of the trace and walk kernels (GEOMETRY_PARAMS in advance.cl),
-// with the hit records and predictions they fill or read.
+// The geometry arguments of the trace and walk kernels (ARCUS_GEOMETRY_ARGS,
+// curved/advance_desc.h), with the hit records and predictions they fill or read.
 struct GeometryArgs {
   std::unique_ptr<DeviceBuffer> hits, predictions;
-  void set(arcus_context_t* ctx, RenderScene* scene, bool single, KernelCall& kernel, unsigned arg, size_t stride,
-           size_t count, const int32_t* predicted, bool occlusion, bool from_surface) {
+  template <class Args>
+  void bind(arcus_context_t* ctx, RenderScene* scene, bool single, Launch<Args>& launch, size_t stride, size_t count,
+            const int32_t* predicted, bool occlusion, bool from_surface) {
     const auto& bvh = scene->device_bvh[single ? 1 : 0];
     hits = std::make_unique<DeviceBuffer>(ctx, ARCUS_HIT_INTS * stride * sizeof(int32_t), "the hit records");
     if (predicted) {
@@ -71,12 +76,12 @@ struct GeometryArgs {
     geo.triangle_count = static_cast<int32_t>(scene->triangles.triangle_count());
     geo.occlusion = occlusion ? 1 : 0;
     geo.from_surface = from_surface ? 1 : 0;
-    kernel.set(arg++, bvh ? bvh->nodes().get() : nullptr);
-    kernel.set(arg++, bvh ? bvh->triangles().get() : nullptr);
-    kernel.set(arg++, scene->device_shapes[single ? 1 : 0].get());
-    kernel.set_value(arg++, geo);
-    kernel.set(arg++, hits.get());
-    kernel.set(arg++, predictions.get());
+    launch.bind(Args::nodes, bvh ? bvh->nodes().get() : nullptr);
+    launch.bind(Args::tris, bvh ? bvh->triangles().get() : nullptr);
+    launch.bind(Args::shapes, scene->device_shapes[single ? 1 : 0].get());
+    launch.bind_value(Args::geo, geo);
+    launch.bind(Args::hit_ints, hits.get());
+    launch.bind(Args::predictions, predictions.get());
   }
   std::vector<int32_t> read(arcus_context_t* ctx, size_t stride) const {
     std::vector<int32_t> v(ARCUS_HIT_INTS * stride);
@@ -107,8 +112,8 @@ TraceOutput run_trace(arcus_context_t* ctx, RenderScene* scene, arcus_advance_pa
   ext.features = ARCUS_FEATURE_RENDER_GEOMETRY | (paths ? ARCUS_FEATURE_RENDER_RECORD_STATE : 0);
   ext.source = &trace_source();
   ext.record_components = DevicePaths::kReals;
-  ext.set_args = [&](KernelCall& kernel, unsigned arg, size_t stride, bool is_single) {
-    geometry.set(ctx, scene, is_single, kernel, arg, stride, in.count, in.predictions, in.occlusion, in.from_surface);
+  ext.bind_args = [&](Launch<AdvanceArg>& launch, size_t stride, bool is_single) {
+    geometry.bind(ctx, scene, is_single, launch, stride, in.count, in.predictions, in.occlusion, in.from_surface);
   };
   ext.finished = [&](size_t stride, bool) {
     stride_seen = stride;
@@ -211,15 +216,15 @@ void prove_chunks_in(arcus_context_t* ctx, RenderScene* scene, const arcus_advan
   const WalkProgram w = walk_program(ctx, scene, p);
   DeviceBuffer d_counts(ctx, paths->counts.size() * sizeof(int32_t), "the path lengths", paths->counts.data());
   auto radii = std::make_shared<DeviceBuffer>(ctx, paths->count() * chunks * sizeof(Real), "the chunks' proofs");
-  KernelCall kernel(w.program.program, "arcus_path_capsules");
-  kernel.set(0, paths->points.get());
-  kernel.set_value(1, static_cast<int32_t>(paths->stride));
-  kernel.set(2, &d_counts);
-  kernel.set_value(3, static_cast<int32_t>(paths->count()));
-  kernel.set_value(4, static_cast<int32_t>(chunks));
-  kernel.set_value(5, static_cast<int32_t>(kPerItem));
-  kernel.set(6, radii.get());
-  kernel.run(ctx, (paths->count() + kPerItem - 1) / kPerItem);
+  Launch<CapsulesArg> launch(ctx, w.program.program);
+  launch.bind(CapsulesArg::paths, paths->points.get());
+  launch.bind_value(CapsulesArg::slots, static_cast<int32_t>(paths->stride));
+  launch.bind(CapsulesArg::counts, &d_counts);
+  launch.bind_value(CapsulesArg::count, static_cast<int32_t>(paths->count()));
+  launch.bind_value(CapsulesArg::chunks, static_cast<int32_t>(chunks));
+  launch.bind_value(CapsulesArg::per_item, static_cast<int32_t>(kPerItem));
+  launch.bind(CapsulesArg::radii, radii.get());
+  launch.run((paths->count() + kPerItem - 1) / kPerItem);
   paths->capsules = std::move(radii);
   paths->chunks = chunks;
 }
@@ -251,25 +256,26 @@ TraceOutput walk_in(arcus_context_t* ctx, RenderScene* scene, const arcus_advanc
   DeviceBuffer d_status(ctx, stride * sizeof(int32_t), "the walked rays");
   const std::array<Real, 4> mirror{static_cast<Real>(plane.normal[0]), static_cast<Real>(plane.normal[1]),
                                    static_cast<Real>(plane.normal[2]), static_cast<Real>(plane.offset)};
-  KernelCall kernel(w.program.program, "arcus_walk");
-  kernel.set(0, paths.points.get());
-  kernel.set_value(1, static_cast<int32_t>(paths.stride));
-  kernel.set(2, &d_counts);
-  kernel.set(3, &d_end);
-  kernel.set(4, &d_rays);
-  kernel.set_value(5, static_cast<int32_t>(count));
-  kernel.set_value(6, mirror);
-  kernel.set(7, nullptr);  // wavelengths: walks are not dispersive (see plan_advance above)
-  kernel.set(8, &d_out);
-  kernel.set(9, &d_status);
-  kernel.set(10, paths.capsules.get());
-  kernel.set_value(11, static_cast<int32_t>(paths.capsules ? paths.chunks : 0));
-  curved::set_field_and_job(kernel, 12, 14, ctx, scene->field, p, plan, stride);
+  Launch<WalkArg> launch(ctx, w.program.program);
+  launch.bind(WalkArg::paths, paths.points.get());
+  launch.bind_value(WalkArg::slots, static_cast<int32_t>(paths.stride));
+  launch.bind(WalkArg::counts, &d_counts);
+  launch.bind(WalkArg::end_status, &d_end);
+  launch.bind(WalkArg::rays, &d_rays);
+  launch.bind_value(WalkArg::ray_count, static_cast<int32_t>(count));
+  launch.bind_value(WalkArg::plane4, mirror);
+  launch.bind(WalkArg::wavelengths, nullptr);  // walks are not dispersive (see plan_advance above)
+  launch.bind(WalkArg::out, &d_out);
+  launch.bind(WalkArg::out_status, &d_status);
+  launch.bind(WalkArg::radii, paths.capsules.get());
+  launch.bind_value(WalkArg::chunks, static_cast<int32_t>(paths.capsules ? paths.chunks : 0));
+  curved::bind_field_and_job(launch, WalkArg::field, WalkArg::field_data, WalkArg::job, ctx, scene->field, p, plan,
+                             stride);
   GeometryArgs geometry;
-  geometry.set(ctx, scene, single, kernel, 15, stride, count, predictions, occlusion, paths.from_surface);
+  geometry.bind(ctx, scene, single, launch, stride, count, predictions, occlusion, paths.from_surface);
   TraceOutput out;
   out.features = plan.features | ARCUS_FEATURE_RENDER_GEOMETRY;
-  out.stats.kernel_seconds = kernel.run(ctx, items);
+  out.stats.kernel_seconds = launch.run(items);
   out.stats.launches = 1;
 
   std::vector<Real> state(DevicePaths::kReals * stride);
