@@ -5,7 +5,7 @@
 #error "the null engine's kernel is built only with its NULL_FILL feature"
 #endif
 
-kernel void arcus_null_fill(global const float* colour, global float* rgb, const uint pixels) {
+kernel void arcus_null_fill(ARCUS_PARAMS(ARCUS_NULL_FILL_ARGS)) {
   const uint i = (uint)get_global_id(0);
   if (i >= pixels) return;
   for (int c = 0; c < 3; ++c) rgb[3 * i + c] = colour[c];

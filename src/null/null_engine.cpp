@@ -14,6 +14,8 @@
 #include "core/features.h"
 #include "core/job.h"
 #include "core/kernel_source.h"
+#include "core/launch.h"
+#include "null/null_desc.h"  // kernels/null/null_desc.h: the kernel's arguments
 
 namespace arcus::null_engine {
 namespace {
@@ -25,7 +27,8 @@ const HandleKind kSwatchHandle("swatch");
 const FeatureTable kTable{"null", {{ARCUS_FEATURE_NULL_FILL, "NULL_FILL", "-D ARCUS_USE_NULL_FILL"}}};
 const FeatureTableEntry kRegistered(&kTable);
 
-const KernelSource kFill{"null/fill", {"null/fill.cl"}, ""};
+const KernelSource kFill{"null/fill", {"common/real.h", "null/null_desc.h", "null/fill.cl"}, ""};
+ARCUS_KERNEL_ARGS(FillArg, "arcus_null_fill", ARCUS_NULL_FILL_ARGS);
 
 struct NullJob : arcus_job_s {
   explicit NullJob(arcus_context_t* ctx) : arcus_job_s(ctx, "null") {}
@@ -79,14 +82,13 @@ arcus_status arcus_null_fill(arcus_swatch_t* swatch, uint32_t width, uint32_t he
     j->count = size_t(width) * height;
     j->features = ARCUS_FEATURE_NULL_FILL;
     j->rgb.resize(3 * j->count);
-    DeviceBuffer colour(ctx, sizeof s->rgb, "the swatch's colour", s->rgb);
     DeviceBuffer image(ctx, j->rgb.size() * sizeof(float), "the image");
     const BuiltProgram built = build_job_program(ctx, *j, null_engine::kFill, Layout{1, 1});
-    KernelCall kernel(built.program, "arcus_null_fill");
-    kernel.set(0, &colour);
-    kernel.set(1, &image);
-    kernel.set_value(2, static_cast<cl_uint>(j->count));
-    j->stats.kernel_seconds = kernel.run(ctx, j->count);
+    Launch<null_engine::FillArg> launch(ctx, built.program);
+    launch.upload(null_engine::FillArg::colour, s->rgb, 3, "the swatch's colour");
+    launch.bind(null_engine::FillArg::rgb, &image);
+    launch.bind_value(null_engine::FillArg::pixels, static_cast<cl_uint>(j->count));
+    j->stats.kernel_seconds = launch.run(j->count);
     j->stats.launches = 1;
     image.read(ctx, 0, j->rgb.size() * sizeof(float), j->rgb.data());
     j->stats.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
