@@ -234,7 +234,8 @@ def draw_paths(ax, frame, paths, colours):
 
 def plot(directory, vscale, out_file):
     rays, paths, scene = load(directory)
-    medium = (scene or {}).get("medium", {})
+    scene = scene or {}
+    medium = scene.get("field", scene.get("medium", {}))  # "medium": the 0.9 spelling
     e1, e2, normal = fan_basis(scene, rays, paths)
     frame = make_frame(medium, rays["origin"][0], e1, e2)
     angles = launch_angles(rays, e1, e2)

@@ -19,7 +19,7 @@ FieldBuild build_scene_medium(const MediumDesc& medium, const arcus_advance_para
   try {
     return build_field(medium);
   } catch (const Error& e) {
-    fail(e.status(), path + ": $.medium: " + e.what());
+    fail(e.status(), path + ": " + medium.key_path + ": " + e.what());
   }
 }
 

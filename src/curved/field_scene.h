@@ -12,7 +12,7 @@
 namespace arcus::curved {
 
 // The field of a scene file's medium, built, with its integrator settings checked;
-// throws naming the file and the key ("<path>: $.medium: ...", "$.integrator").
+// throws naming the file and the key ("<path>: $.field: ...", "$.integrator").
 FieldBuild build_scene_medium(const MediumDesc& medium, const arcus_advance_params& params, const std::string& path);
 
 struct FieldScene : arcus_scene_s {

@@ -144,6 +144,7 @@ void parse_medium(const Node& m, const std::string& base_dir, MediumDesc* d) {
   std::vector<std::pair<const char*, const MediumType*>> options;
   for (const MediumType& t : kMedia) options.emplace_back(t.name, &t);
   const MediumType* type = m.member("type").choice(options);
+  d->key_path = m.path();
   d->kind = type->kind;
   type->parse(m, base_dir, d);
 }
@@ -289,16 +290,23 @@ void parse_box(const Node& box, arcus_advance_params* p) {
   store(hi, p->box_max);
 }
 
+Node field_member(const Node& root) {
+  const std::optional<Node> field = root.find("field"), medium = root.find("medium");
+  if (field && medium) medium->fail("\"medium\" is the arcus 0.9 spelling of \"field\": give one of them");
+  return medium ? *medium : root.member("field");
+}
+
 namespace {
 
 SceneDesc parse_document(const Document& doc, const std::string& base_dir, const SceneLimits& limits) {
   SceneDesc s;
   s.file = doc.file_name();
   const Node root = doc.root();
-  root.expect_object({"name", "description", "medium", "rays", "integrator", "box", "record_path", "path_capacity"});
+  root.expect_object(
+      {"name", "description", "field", "medium", "rays", "integrator", "box", "record_path", "path_capacity"});
   s.name = scene::parse_name(root.member("name"));
   if (auto v = root.find("description")) s.description = v->string();
-  parse_medium(root.member("medium"), base_dir, &s.medium);
+  parse_medium(field_member(root), base_dir, &s.medium);
   parse_rays(root.member("rays"), limits, &s);
   default_advance_params(&s.params);
   parse_integrator(root.member("integrator"), &s.params);

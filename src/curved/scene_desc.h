@@ -43,6 +43,7 @@ struct MediumDesc {
   double radius = 1.0;
   AtmosphereDesc atmosphere;
   GridDesc grid;
+  std::string key_path = "$.field";  // where the scene gave it ("$.medium": the 0.9 spelling)
 };
 
 struct SceneDesc {
@@ -66,6 +67,9 @@ struct SceneLimits {
 // The parts of a scene file other engines' scenes share (a render scene has a medium
 // and an integrator too): each reads one node, failing with its file and key path.
 void parse_medium(const json::Node& node, const std::string& base_dir, MediumDesc* out);
+// A scene's index field: its "field", or "medium", the spelling of arcus 0.9 (kept for
+// one release: the C API calls it a field, so do scene files now); both is an error.
+json::Node field_member(const json::Node& root);
 void parse_integrator(const json::Node& node, arcus_advance_params* params);
 void parse_box(const json::Node& node, arcus_advance_params* params);
 

@@ -173,11 +173,11 @@ RenderDesc parse_document(const Document& doc, const std::string& base_dir) {
   RenderDesc s;
   s.file = doc.file_name();
   const Node root = doc.root();
-  root.expect_object({"name", "description", "medium", "integrator", "bounds", "camera", "materials", "objects",
+  root.expect_object({"name", "description", "field", "medium", "integrator", "bounds", "camera", "materials", "objects",
                       "lights", "sky", "spectral", "photons", "techniques", "exposure"});
   s.name = scene::parse_name(root.member("name"));
   if (auto v = root.find("description")) s.description = v->string();
-  curved::parse_medium(root.member("medium"), base_dir, &s.medium);
+  curved::parse_medium(curved::field_member(root), base_dir, &s.medium);
   curved::default_advance_params(&s.params);
   curved::parse_integrator(root.member("integrator"), &s.params);
   if (auto v = root.find("bounds")) {
