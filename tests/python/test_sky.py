@@ -1,4 +1,4 @@
-"""arcus.rainbow.render / arcus.sky and `arcus render` on a rainbow scene: a rendered
+"""arcus.sky.render and `arcus render` on a rainbow scene: a rendered
 bow against its own phase table (the brightest red row where the table's red peaks, to
 the pixel), Alexander's dark band, the secondary's reversed colours, the volume table's
 energy against the drops' cross-sections, size distributions, and bad input (explained,
@@ -200,3 +200,8 @@ def test_command_line_writes_images_and_explains_errors(tmp_path):
                          env=env)
     assert bad.returncode == 2 and "below the horizon" in bad.stderr
     assert not (tmp_path / "bad.png").exists()
+
+
+def test_arcus_rainbow_render_is_the_deprecated_name_of_arcus_sky_render():
+    with pytest.warns(DeprecationWarning, match="arcus.sky.render"):
+        assert arcus.rainbow.render is arcus.sky.render

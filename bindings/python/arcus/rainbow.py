@@ -29,6 +29,7 @@ to the scattering plane for unpolarised incident light, and "unpolarized" their 
 Lorenz–Mie and its Debye series, the reference for spheres, are in :mod:`arcus.mie`.
 """
 
+import importlib
 import math
 import warnings
 import weakref
@@ -446,10 +447,12 @@ def rainbow_angle(n, p=2):
     return 360.0 - theta if theta > 180.0 else theta
 
 
-def render(scene, **options):
-    """Renders a rainbow sky (a scene dict or ``scenes/rainbow/*.json``): an
-    :class:`arcus.sky.SkyImage`.  See :func:`arcus.sky.render` for the options."""
-    # Not a module-level alias: sky sits above sweep, which runs this module's phase functions
-    # (rainbow -> sky -> sweep -> rainbow would be an import circle).
-    from .sky import render as render_sky
-    return render_sky(scene, **options)
+def __getattr__(name):
+    # arcus.rainbow.render, the 0.9 name of arcus.sky.render, found by name when used:
+    # sky sits above this module (its tables come from sweep, which runs this module's
+    # phase functions), so this module imports nothing of it.
+    if name == "render":
+        warnings.warn("arcus.rainbow.render is deprecated since arcus 0.10: use arcus.sky.render",
+                      DeprecationWarning, stacklevel=2)
+        return importlib.import_module(__package__ + ".sky").render
+    raise AttributeError("module %r has no attribute %r" % (__name__, name))
