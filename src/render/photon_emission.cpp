@@ -115,6 +115,76 @@ std::string plane_problem(const RenderScene& s, const MirrorPlane& plane, double
   return "";
 }
 
+// A photon, what the photon map keys it by, its light and the photon it mirrors (-1: none).
+void add_photon(Emission* e, const Live& p, Vec3 key, size_t l, int32_t mirror_of) {
+  e->live.push_back(p);
+  e->key.push_back(key);
+  e->light.push_back(static_cast<uint32_t>(l));
+  e->mirror_of.push_back(mirror_of);
+}
+
+// A sun's share of n photons through its portal, ids from `id` on.  SYMMETRY: photons in
+// pairs, the second the first's mirror image (an odd share's last photon alone).
+void emit_sun(const RenderScene& s, const LightDesc& light, const Portal& portal, size_t l, uint64_t n, uint64_t seed,
+              double offset, const MirrorPlane* plane, uint64_t& id, Emission* e) {
+  const uint64_t step = plane ? 2 : 1;
+  const Vec3 sun = normalized(light.direction);
+  // The sampling coordinate: the start point across the beam (z = 0).
+  Vec3 b1, b2;
+  photon_basis(sun, &b1, &b2);
+  auto across = [&](Vec3 q) { return Vec3{dot(q, b1), dot(q, b2), 0}; };
+  double power[3];
+  for (int c = 0; c < 3; ++c) power[c] = light.power[c] * portal.area / static_cast<double>(n);
+  for (uint64_t i = 0; i < n; i += step, id += step) {
+    const double pick = photon_draw(seed, id, 0) * portal.area;
+    const size_t found = std::upper_bound(portal.cdf.begin(), portal.cdf.end(), pick) - portal.cdf.begin();
+    const size_t t = std::min(found, portal.cdf.size() - 1);
+    const double r1 = std::sqrt(photon_draw(seed, id, 1)), r2 = photon_draw(seed, id, 2);
+    Vec3 q = portal.a[t] + (r1 * (1 - r2)) * portal.e1[t] + (r1 * r2) * portal.e2[t];
+    // Just past the portal, `offset` from its plane.
+    const double cosine = std::max(dot(portal.normal[t], sun), 1e-3);
+    Vec3 o = q - (offset / cosine) * sun;
+    const bool pair = plane && i + 1 < n;
+    if (pair && dot(vec3(plane->normal), q) < plane->offset) {  // folded onto the positive side
+      q = reflect_point(*plane, q);
+      o = reflect_point(*plane, o);
+    }
+    if (!inside(s, o)) {  // the light misses the scene there
+      if (!pair) id -= step - 1;  // an odd share's last photon: one id
+      continue;
+    }
+    add_photon(e, {o, -1.0 * sun, {power[0], power[1], power[2]}, id, 0}, across(q), l, -1);
+    if (pair) {
+      add_photon(e, {reflect_point(*plane, o), -1.0 * sun, {power[0], power[1], power[2]}, id + 1, 0},
+                 across(reflect_point(*plane, q)), l, static_cast<int32_t>(e->live.size() - 1));
+    } else {
+      id -= step - 1;
+    }
+  }
+}
+
+// A point light's share of n photons, uniform over directions; pairs as emit_sun's.
+void emit_point(const RenderScene& s, const LightDesc& light, size_t l, uint64_t n, uint64_t seed,
+                const MirrorPlane* plane, uint64_t& id, Emission* e) {
+  const uint64_t step = plane ? 2 : 1;
+  double power[3];
+  for (int c = 0; c < 3; ++c) power[c] = 4 * M_PI * light.power[c] / static_cast<double>(n);
+  const Vec3 o = light.position;
+  for (uint64_t i = 0; i < n; i += step, id += step) {
+    const double z = 1 - 2 * photon_draw(seed, id, 0), phi = 2 * M_PI * photon_draw(seed, id, 1);
+    const double r = std::sqrt(std::max(0.0, 1 - z * z));
+    Vec3 d{r * std::cos(phi), r * std::sin(phi), z};
+    const bool pair = plane && i + 1 < n;
+    if (pair && dot(vec3(plane->normal), d) < 0) d = reflect_vector(*plane, d);
+    if (!pair) id -= step - 1;
+    if (!inside(s, o)) continue;
+    add_photon(e, {o, d, {power[0], power[1], power[2]}, id, 0}, d, l, -1);
+    if (pair)
+      add_photon(e, {o, reflect_vector(*plane, d), {power[0], power[1], power[2]}, id + 1, 0},
+                 reflect_vector(*plane, d), l, static_cast<int32_t>(e->live.size() - 1));
+  }
+}
+
 }  // namespace
 
 Emission emit(const RenderScene& s, uint64_t count, uint64_t seed, double offset, const MirrorPlane* plane) {
@@ -136,12 +206,6 @@ Emission emit(const RenderScene& s, uint64_t count, uint64_t seed, double offset
   }
 
   Emission e;
-  auto add = [&](const Live& p, Vec3 key, size_t l, int32_t mirror_of) {
-    e.live.push_back(p);
-    e.key.push_back(key);
-    e.light.push_back(static_cast<uint32_t>(l));
-    e.mirror_of.push_back(mirror_of);
-  };
   uint64_t id = 0;
   double running = 0;
   for (size_t l = 0; l < lights && total > 0; ++l) {
@@ -155,61 +219,10 @@ Emission emit(const RenderScene& s, uint64_t count, uint64_t seed, double offset
       continue;
     }
     const LightDesc& light = s.desc.lights[l];
-    double power[3];
-    // SYMMETRY: photons in pairs, the second the first's mirror image (an odd share's
-    // last photon alone).
-    const uint64_t step = plane ? 2 : 1;
-    if (light.kind == LightKind::Sun) {
-      const Portal& portal = portals[l];
-      const Vec3 sun = normalized(light.direction);
-      // The sampling coordinate: the start point across the beam (z = 0).
-      Vec3 b1, b2;
-      photon_basis(sun, &b1, &b2);
-      auto across = [&](Vec3 q) { return Vec3{dot(q, b1), dot(q, b2), 0}; };
-      for (int c = 0; c < 3; ++c) power[c] = light.power[c] * portal.area / static_cast<double>(n);
-      for (uint64_t i = 0; i < n; i += step, id += step) {
-        const double pick = photon_draw(seed, id, 0) * portal.area;
-        const size_t found = std::upper_bound(portal.cdf.begin(), portal.cdf.end(), pick) - portal.cdf.begin();
-        const size_t t = std::min(found, portal.cdf.size() - 1);
-        const double r1 = std::sqrt(photon_draw(seed, id, 1)), r2 = photon_draw(seed, id, 2);
-        Vec3 q = portal.a[t] + (r1 * (1 - r2)) * portal.e1[t] + (r1 * r2) * portal.e2[t];
-        // Just past the portal, `offset` from its plane.
-        const double cosine = std::max(dot(portal.normal[t], sun), 1e-3);
-        Vec3 o = q - (offset / cosine) * sun;
-        const bool pair = plane && i + 1 < n;
-        if (pair && dot(vec3(plane->normal), q) < plane->offset) {  // folded onto the positive side
-          q = reflect_point(*plane, q);
-          o = reflect_point(*plane, o);
-        }
-        if (!inside(s, o)) {  // the light misses the scene there
-          if (!pair) id -= step - 1;  // an odd share's last photon: one id
-          continue;
-        }
-        add({o, -1.0 * sun, {power[0], power[1], power[2]}, id, 0}, across(q), l, -1);
-        if (pair) {
-          add({reflect_point(*plane, o), -1.0 * sun, {power[0], power[1], power[2]}, id + 1, 0},
-              across(reflect_point(*plane, q)), l, static_cast<int32_t>(e.live.size() - 1));
-        } else {
-          id -= step - 1;
-        }
-      }
-    } else {
-      for (int c = 0; c < 3; ++c) power[c] = 4 * M_PI * light.power[c] / static_cast<double>(n);
-      const Vec3 o = light.position;
-      for (uint64_t i = 0; i < n; i += step, id += step) {
-        const double z = 1 - 2 * photon_draw(seed, id, 0), phi = 2 * M_PI * photon_draw(seed, id, 1);
-        const double r = std::sqrt(std::max(0.0, 1 - z * z));
-        Vec3 d{r * std::cos(phi), r * std::sin(phi), z};
-        const bool pair = plane && i + 1 < n;
-        if (pair && dot(vec3(plane->normal), d) < 0) d = reflect_vector(*plane, d);
-        if (!pair) id -= step - 1;
-        if (!inside(s, o)) continue;
-        add({o, d, {power[0], power[1], power[2]}, id, 0}, d, l, -1);
-        if (pair)
-          add({o, reflect_vector(*plane, d), {power[0], power[1], power[2]}, id + 1, 0}, reflect_vector(*plane, d), l,
-              static_cast<int32_t>(e.live.size() - 1));
-      }
-    }
+    if (light.kind == LightKind::Sun)
+      emit_sun(s, light, portals[l], l, n, seed, offset, plane, id, &e);
+    else
+      emit_point(s, light, l, n, seed, plane, id, &e);
   }
   return e;
 }

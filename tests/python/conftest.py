@@ -16,6 +16,25 @@ sys.path.insert(0, str(BINDINGS))
 import arcus  # noqa: E402  (needs the sys.path entry above)
 
 
+# The engines a test module needs, by its name; a library built without one of them
+# (ARCUS_WITH_<ENGINE>=OFF) skips the module.  Modules named for no engine need them all.
+_MODULE_ENGINES = (
+    (("test_ocean",), {"ocean"}),
+    (("test_rainbow", "test_sky", "test_halo", "test_sweep", "test_view_rainbow"), {"rainbow"}),
+    (("test_render",), {"curved", "render"}),
+)
+
+
+def pytest_collection_modifyitems(config, items):
+    for item in items:
+        module = item.module.__name__.rpartition(".")[2]
+        needed = next((engines for prefixes, engines in _MODULE_ENGINES if module.startswith(prefixes)),
+                      {"curved", "render", "ocean", "rainbow"})
+        missing = needed - arcus.ENGINES
+        if missing:
+            item.add_marker(pytest.mark.skip(reason="libarcus built without " + ", ".join(sorted(missing))))
+
+
 def pytest_configure(config):
     config.addinivalue_line("markers", "end_to_end: runs the arcus command or the documentation as a user does "
                             "(subprocesses; the sanitizer run skips them, they test no library code of their own)")

@@ -40,7 +40,7 @@ from ._constants import (
     RAY_STEP_LIMIT,
 )
 from ._errors import ArgumentError, Error, LibraryNotFoundError
-from ._lib import FEATURES, feature_names
+from ._lib import ENGINES, FEATURES, feature_names
 from ._lib import check as _check
 from ._lib import lib as _libarcus
 from ._lib import library_path  # the path (or soname) libarcus was loaded from
@@ -69,6 +69,7 @@ __all__ = [
     "FAILURE_NONE",
     "FAILURE_NOT_FINITE",
     "FAILURE_TOLERANCE",
+    "ENGINES",
     "FEATURES",
     "FIELD_KINDS",
     "LibraryNotFoundError",

@@ -227,10 +227,52 @@ def _candidates():
     yield "installed (sys.prefix)", str(Path(sys.prefix) / "lib" / _LIBRARY_NAME)
 
 
+# The engine each call belongs to, by its name (arcus_core.h, "Names"); the core's calls
+# match none.  A library may be built without an engine (ARCUS_WITH_<ENGINE>=OFF).
+_ENGINE_CALLS = {
+    "curved": ("arcus_curved_", "arcus_job_get_curved_", "arcus_field_", "arcus_atmosphere_desc_init",
+               "arcus_advance_params_init", "arcus_scene_get_field", "arcus_scene_get_advance_params",
+               "arcus_scene_get_ray"),
+    "render": ("arcus_render", "arcus_job_get_render_", "arcus_job_write_render_"),
+    "ocean": ("arcus_ocean_", "arcus_water_", "arcus_bio_optical_", "arcus_job_get_ocean_", "arcus_job_write_ocean_"),
+    "rainbow": ("arcus_rainbow_", "arcus_particle_", "arcus_job_get_rainbow_", "arcus_job_write_rainbow_"),
+}
+
+
+def _engine_of(name):
+    return next((engine for engine, prefixes in _ENGINE_CALLS.items() if name.startswith(prefixes)), None)
+
+
+def _engines_built(dll):
+    """The engines `dll` was built with: those whose feature names it reports."""
+    dll.arcus_features_to_string.restype = c_int
+    dll.arcus_features_to_string.argtypes = [c_uint64, c_char_p, c_size_t]
+    buffer = ctypes.create_string_buffer(256)
+    names = [buffer.value.decode() for shift in range(64)
+             if dll.arcus_features_to_string(1 << shift, buffer, len(buffer)) == 0]
+    return {engine for engine in _ENGINE_CALLS if any(n.startswith(engine.upper() + "_") for n in names)}
+
+
+def _absent(name, engine):
+    def call(*args):
+        raise error_for(4, "%s: this libarcus was built without the %s engine (ARCUS_WITH_%s=OFF)"
+                        % (name, engine, engine.upper()), "ARCUS_ERROR_UNSUPPORTED")
+    return call
+
+
 def _open(path):
-    """ctypes.CDLL(path) with every prototype set; raises OSError or AttributeError."""
+    """ctypes.CDLL(path) with every prototype set; raises OSError or AttributeError.
+
+    A call of an engine the library was built without stands in as a function that
+    raises arcus.Error (status UNSUPPORTED) naming the engine; any other missing
+    symbol (a stale build) is an AttributeError naming it."""
     dll = ctypes.CDLL(path)
+    built = _engines_built(dll)
     for name, (restype, argtypes) in _PROTOTYPES.items():
+        engine = _engine_of(name)
+        if engine is not None and engine not in built:
+            setattr(dll, name, _absent(name, engine))
+            continue
         func = getattr(dll, name)  # AttributeError names the missing symbol
         func.restype = restype
         func.argtypes = argtypes
@@ -284,6 +326,9 @@ def load():
 
 
 lib, library_path = load()
+#: The engines the loaded library was built with ({"curved", "render", "ocean", "rainbow"}
+#: by default); the calls of the others raise arcus.Error.
+ENGINES = frozenset(_engines_built(lib))
 
 
 # ---- errors ---------------------------------------------------------------------------
