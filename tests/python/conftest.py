@@ -22,6 +22,8 @@ _MODULE_ENGINES = (
     (("test_ocean",), {"ocean"}),
     (("test_rainbow", "test_sky", "test_halo", "test_sweep", "test_view_rainbow"), {"rainbow"}),
     (("test_render",), {"curved", "render"}),
+    (("test_advance", "test_fields", "test_paths", "test_progress", "test_determinism", "test_wavelengths",
+      "test_devices"), {"curved"}),
 )
 
 
