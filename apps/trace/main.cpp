@@ -121,7 +121,7 @@ Results describe(arcus_context_t* ctx, arcus_scene_t* scene, const fs::path& fil
   r.description = description;
   r.document = document;
   arcus_field_t* raw = nullptr;
-  check(arcus_scene_get_field(scene, &raw), ctx, "reading the scene's medium");
+  check(arcus_scene_get_field(scene, &raw), ctx, "reading the scene's field");
   Field field(raw);
   arcus_field_kind kind;
   check(arcus_field_get_kind(field.get(), &kind), ctx, "reading the medium's kind");

@@ -81,7 +81,7 @@ extern "C" {
 
 /* ---- version ------------------------------------------------------------------ */
 #define ARCUS_VERSION_MAJOR 0
-#define ARCUS_VERSION_MINOR 9
+#define ARCUS_VERSION_MINOR 10
 #define ARCUS_VERSION_PATCH 0
 #define ARCUS_VERSION (ARCUS_VERSION_MAJOR * 10000 + ARCUS_VERSION_MINOR * 100 + ARCUS_VERSION_PATCH)
 
