@@ -8,6 +8,10 @@
  * $.medium.radius: expected a number").  The engine a scene is for follows from its
  * keys; each engine's header has the calls that use a scene (arcus_curved.h:
  * arcus_scene_get_field, arcus_curved_advance_scene, ...).
+ *
+ * Meshes (arcus_mesh_t) are geometry handed over in memory, as Embree takes it, where
+ * a call would otherwise read a mesh file: each engine's header says which calls take
+ * one (arcus_rainbow.h: arcus_particle_create_from_mesh).
  */
 #ifndef ARCUS_SCENE_H
 #define ARCUS_SCENE_H
@@ -46,6 +50,26 @@ ARCUS_API arcus_status arcus_scene_get_name(arcus_scene_t* scene, const char** n
 ARCUS_API arcus_status arcus_scene_get_description(arcus_scene_t* scene, const char** description);
 ARCUS_API arcus_status arcus_scene_get_document(arcus_scene_t* scene, const char** json);
 ARCUS_API arcus_status arcus_scene_get_engine(arcus_scene_t* scene, const char** engine);
+
+/* ---- meshes from memory ------------------------------------------------------- */
+typedef struct arcus_mesh_s arcus_mesh_t;
+
+/* A triangle mesh of `vertex_count` vertices (`vertices`: x y z each, tightly packed, in
+ * metres or in the units a `scale` later turns into metres) and `triangle_count`
+ * triangles (`indices`: 3 vertex indices each, from 0; either array may be NULL when its
+ * count is 0), copied: the arrays may be freed once the call returns.  It is the same
+ * mesh a file with these vertices and triangles gives (arcus_particle_create_mesh),
+ * checked the same way: at least one triangle, every
+ * coordinate finite, every index below vertex_count, counts of at most 2^31 - 1 and
+ * within the host's memory (ARCUS_ERROR_OUT_OF_MEMORY).  How far from the origin it may
+ * lie (1e18 m) is checked, in metres, where it is used.  Errors name the argument:
+ * "indices[7] = 12 is not below vertex_count 10", "vertices[4] = nan is not finite". */
+ARCUS_API arcus_status arcus_mesh_create(arcus_context_t* ctx, size_t vertex_count, const double* vertices,
+                                         size_t triangle_count, const uint32_t* indices, arcus_mesh_t** out);
+ARCUS_API arcus_status arcus_mesh_retain(arcus_mesh_t* mesh);
+ARCUS_API arcus_status arcus_mesh_release(arcus_mesh_t* mesh);
+/* Its counts; either pointer may be NULL (not wanted). */
+ARCUS_API arcus_status arcus_mesh_get_counts(arcus_mesh_t* mesh, size_t* vertex_count, size_t* triangle_count);
 
 #ifdef __cplusplus
 }

@@ -20,6 +20,7 @@
 
 #include "core/error.h"
 #include "core/files.h"
+#include "core/format.h"
 #include "core/limits.h"
 #include "geometry/mesh_scan.h"
 
@@ -106,11 +107,7 @@ Mesh load_mesh(const std::string& path) {
   mesh.positions.reserve(3 * om.n_vertices());
   for (const auto v : om.vertices()) {
     const OpenMesh::Vec3d& p = om.point(v);
-    for (int k = 0; k < 3; ++k) {
-      if (!std::isfinite(p[k]))
-        fail(ARCUS_ERROR_INVALID_ARGUMENT, path + ": vertex " + std::to_string(v.idx()) + " is not finite");
-      mesh.positions.push_back(p[k]);
-    }
+    mesh.positions.insert(mesh.positions.end(), {p[0], p[1], p[2]});
   }
   // STL has no texture coordinates, but OpenMesh leaves the option as asked.
   if (options.vertex_has_texcoord() && ext != ".stl") {
@@ -126,8 +123,46 @@ Mesh load_mesh(const std::string& path) {
     for (const auto v : om.fv_range(f)) ring.push_back(static_cast<uint32_t>(v.idx()));
     for (size_t i = 1; i + 1 < ring.size(); ++i) mesh.triangles.insert(mesh.triangles.end(), {ring[0], ring[i], ring[i + 1]});
   }
-  if (mesh.triangles.empty()) fail(ARCUS_ERROR_INVALID_ARGUMENT, path + ": the mesh has no faces");
+  check_mesh(mesh);
   return mesh;
+}
+
+Mesh mesh_from_arrays(size_t vertex_count, const double* vertices, size_t triangle_count, const uint32_t* indices) {
+  require(vertex_count <= kMaxCount,
+          "vertex_count " + std::to_string(vertex_count) + " is more than 2^31 - 1 vertices");
+  require(triangle_count <= kMaxCount,
+          "triangle_count " + std::to_string(triangle_count) + " is more than 2^31 - 1 triangles");
+  if (vertex_count) require_pointer(vertices, "vertices");  // an empty array may be NULL
+  if (triangle_count) require_pointer(indices, "indices");
+  // The copy, and the particle or scene made of it: as a file's mesh, a few hundred
+  // bytes a vertex and triangle at most.
+  limits::require_host_memory(400.0 * (double(vertex_count) + double(triangle_count)),
+                              "a mesh of " + std::to_string(vertex_count) + " vertices and " +
+                                  std::to_string(triangle_count) + " triangles");
+  Mesh mesh;
+  mesh.positions.assign(vertices, vertices + 3 * vertex_count);
+  mesh.triangles.assign(indices, indices + 3 * triangle_count);
+  check_mesh(mesh);
+  return mesh;
+}
+
+void check_mesh(const Mesh& mesh) {
+  // A file's mesh is named by its file and counts; a caller's by the arrays it passed.
+  auto refuse = [&](const std::string& in_file, const std::string& in_arrays) {
+    fail(ARCUS_ERROR_INVALID_ARGUMENT, mesh.source.empty() ? in_arrays : mesh.source + ": " + in_file);
+  };
+  if (mesh.triangles.empty()) refuse("the mesh has no faces", "triangle_count is 0: a mesh needs a triangle");
+  for (size_t i = 0; i < mesh.positions.size(); ++i)
+    if (!std::isfinite(mesh.positions[i]))
+      refuse("vertex " + std::to_string(i / 3) + " is not finite",
+             "vertices[" + std::to_string(i) + "] = " + number(mesh.positions[i]) + " is not finite");
+  const size_t count = mesh.vertex_count();
+  for (size_t i = 0; i < mesh.triangles.size(); ++i)
+    if (mesh.triangles[i] >= count)
+      refuse("triangle " + std::to_string(i / 3) + " names vertex " + std::to_string(mesh.triangles[i]) + " of " +
+                 std::to_string(count),
+             "indices[" + std::to_string(i) + "] = " + std::to_string(mesh.triangles[i]) +
+                 " is not below vertex_count " + std::to_string(count));
 }
 
 Mesh transformed(const Mesh& mesh, const double m[12]) {

@@ -1,5 +1,6 @@
 // Triangle meshes as the engines use them: positions and triangles in double, optional
-// per-vertex texture coordinates, read from OBJ, PLY, OFF or STL through OpenMesh.
+// per-vertex texture coordinates, read from OBJ, PLY, OFF or STL through OpenMesh or
+// made from a caller's arrays (arcus_mesh_create); both pass the same checks.
 #pragma once
 
 #include <cstdint>
@@ -7,6 +8,10 @@
 #include <vector>
 
 namespace arcus::geometry {
+
+// The most vertices or triangles a mesh may have: beyond it indices overflow OpenMesh's
+// ints (and the kernels' int32 triangle indices).
+constexpr uint64_t kMaxCount = (uint64_t(1) << 31) - 1;
 
 struct Mesh {
   std::vector<double> positions;    // 3 per vertex
@@ -30,6 +35,20 @@ struct Mesh {
 // formats, PLY's double properties included) hand coordinates over as float, so
 // positions read from files are float values; everything after reading is double.
 Mesh load_mesh(const std::string& path);
+
+// A mesh of `vertex_count` positions (`vertices`: x y z each) and `triangle_count`
+// triangles (`indices`: 3 each), copied, with no source.  Counts above kMaxCount or
+// beyond the host's memory are refused before anything is allocated; then check_mesh.
+// Messages name the C API's arguments ("indices[7] = 12 is not below vertex_count 10").
+Mesh mesh_from_arrays(size_t vertex_count, const double* vertices, size_t triangle_count, const uint32_t* indices);
+
+// What every mesh must be, read from a file or made from arrays, checked once for both:
+// at least one triangle, every coordinate finite, every index below the vertex count.
+// ARCUS_ERROR_INVALID_ARGUMENT otherwise, naming the file ("cube.off: vertex 3 is not
+// finite") or, for a mesh without a source, the arrays ("vertices[10] = nan is not
+// finite").  How far from the origin a mesh may lie is checked where it is placed, in
+// metres (bvh::kMaxCoordinate, when its BVH is built), for both alike.
+void check_mesh(const Mesh& mesh);
 
 // `mesh` with every position p replaced by M·(p, 1), M a 3×4 row-major affine matrix.
 Mesh transformed(const Mesh& mesh, const double matrix[12]);

@@ -10,14 +10,13 @@
 #include <vector>
 
 #include "core/error.h"
+#include "geometry/mesh.h"
 
 namespace arcus::geometry {
 namespace {
 
 using std::string_view;
 
-// Counts no mesh of ours comes near; beyond them indices overflow OpenMesh's ints.
-constexpr uint64_t kMaxCount = (uint64_t(1) << 31) - 1;
 // A PLY header longer than this is no header.
 constexpr size_t kMaxHeaderBytes = 64 * 1024;
 

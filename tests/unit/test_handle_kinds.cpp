@@ -18,8 +18,8 @@ TEST(HandleKinds, EveryModulesKindIsRegisteredOnceUnderAUniqueName) {
     EXPECT_TRUE(kinds.insert(kind).second) << kind->name() << " is registered twice";
     EXPECT_TRUE(names.insert(kind->name()).second) << "two kinds are named " << kind->name();
   }
-  // The core's two, the scene module's, and those of the engines built into this library.
-  for (const char* expected : {"context", "job", "scene", "field", "renderer", "water", "particle"})
+  // The core's two, the scene and geometry modules', and those of the engines built into this library.
+  for (const char* expected : {"context", "job", "scene", "mesh", "field", "renderer", "water", "particle"})
     EXPECT_EQ(names.count(expected), 1u) << expected << " is not registered";
 }
 
