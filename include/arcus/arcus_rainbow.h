@@ -18,6 +18,7 @@
 #define ARCUS_RAINBOW_H
 
 #include "arcus_core.h"
+#include "arcus_scene.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -74,6 +75,12 @@ ARCUS_API arcus_status arcus_particle_create_raindrop(arcus_context_t* ctx, doub
  *     glints into a phase function). */
 ARCUS_API arcus_status arcus_particle_create_mesh(arcus_context_t* ctx, const char* path, double scale,
                                                   int32_t smooth, arcus_particle_t** out);
+/* As arcus_particle_create_mesh, of a mesh made from memory (arcus_mesh_create,
+ * arcus_scene.h), on the mesh's context: the same vertices and triangles give the same
+ * particle and the same casts as from a file.  The particle keeps its own copy: the
+ * mesh may be released at once. */
+ARCUS_API arcus_status arcus_particle_create_from_mesh(arcus_mesh_t* mesh, double scale, int32_t smooth,
+                                                       arcus_particle_t** out);
 ARCUS_API arcus_status arcus_particle_retain(arcus_particle_t* particle);
 ARCUS_API arcus_status arcus_particle_release(arcus_particle_t* particle);
 

@@ -12,6 +12,7 @@
 #include "arcus/arcus_rainbow.h"
 #include "core/call.h"
 #include "core/format.h"
+#include "geometry/mesh_handle.h"
 #include "image/image_io.h"
 #include "rainbow/cast.h"
 #include "rainbow/mie.h"
@@ -36,15 +37,20 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// Makes *out a particle of ctx, for a call holding ctx's lock.
+template <class Make>
+void make_particle(arcus_context_t* ctx, arcus_particle_t** out, Make&& make) {
+  require_pointer(out, "out");
+  *out = nullptr;
+  auto particle = std::make_unique<arcus_particle_s>(ctx, make());
+  arcus::retain_context(ctx);  // the particle's reference
+  *out = particle.release();
+}
+
 template <class Make>
 arcus_status create_particle(arcus_context_t* ctx, arcus_particle_t** out, Make&& make) {
-  return simple<arcus_context_s>(ctx, arcus::kContextHandle, "ctx", [&](arcus_context_s*) {
-    require_pointer(out, "out");
-    *out = nullptr;
-    auto particle = std::make_unique<arcus_particle_s>(ctx, make());
-    arcus::retain_context(ctx);  // the particle's reference
-    *out = particle.release();
-  });
+  return simple<arcus_context_s>(ctx, arcus::kContextHandle, "ctx",
+                                 [&](arcus_context_s*) { make_particle(ctx, out, make); });
 }
 
 // The public API takes kelvin (arcus_core.h, "Units"); the formulation is written in °C.
@@ -139,7 +145,13 @@ arcus_status arcus_particle_create_mesh(arcus_context_t* ctx, const char* path, 
                                         arcus_particle_t** out) {
   return create_particle(ctx, out, [&] {
     require_pointer(path, "path");
-    return rainbow::mesh(path, scale, smooth != 0);
+    return rainbow::mesh(geometry::load_mesh(path), scale, smooth != 0);
+  });
+}
+
+arcus_status arcus_particle_create_from_mesh(arcus_mesh_t* mesh, double scale, int32_t smooth, arcus_particle_t** out) {
+  return simple<arcus_mesh_s>(mesh, arcus::geometry::kMeshHandle, "mesh", [&](arcus_mesh_s* m) {
+    make_particle(m->owner(), out, [&] { return rainbow::mesh(m->mesh, scale, smooth != 0); });
   });
 }
 

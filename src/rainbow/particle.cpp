@@ -63,12 +63,13 @@ Particle raindrop(double diameter) {
   return p;
 }
 
-Particle mesh(const std::string& path, double scale, bool smooth) {
+Particle mesh(geometry::Mesh mesh, double scale, bool smooth) {
   require(std::isfinite(scale) && scale > 0, "mesh scale must be positive and finite, got " + number(scale));
   Particle p;
   p.kind = ARCUS_RAINBOW_SHAPE_MESH;
   p.smooth = smooth;
-  p.mesh = geometry::load_mesh(path);
+  p.mesh = std::move(mesh);
+  const std::string name = p.mesh.source.empty() ? "the mesh" : "mesh " + p.mesh.source;
   for (double& x : p.mesh.positions) x *= scale;
   // Closed: every edge in exactly two triangles, so a ray that enters must leave.
   std::map<std::pair<uint32_t, uint32_t>, int> edges;
@@ -80,7 +81,7 @@ Particle mesh(const std::string& path, double scale, bool smooth) {
     }
   size_t open = 0;
   for (const auto& e : edges) open += e.second != 2;
-  require(open == 0, "mesh " + path + " is not closed: " + std::to_string(open) + " of its " +
+  require(open == 0, name + " is not closed: " + std::to_string(open) + " of its " +
                          std::to_string(edges.size()) + " edges are not shared by exactly two triangles");
   double volume = 0, bound = 0;
   const auto& x = p.mesh.positions;
@@ -95,7 +96,7 @@ Particle mesh(const std::string& path, double scale, bool smooth) {
     bound = std::max(bound, std::sqrt(x[3 * v] * x[3 * v] + x[3 * v + 1] * x[3 * v + 1] + x[3 * v + 2] * x[3 * v + 2]));
   p.volume = std::fabs(volume);  // either winding
   p.bound = bound * 1.000001;
-  require(p.volume > 0, "mesh " + path + " encloses no volume");
+  require(p.volume > 0, name + " encloses no volume");
   return p;
 }
 

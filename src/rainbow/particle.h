@@ -25,10 +25,11 @@ struct Particle {
 Particle sphere(double radius);
 // Equivalent-volume diameter 1-6 mm (in metres); Table 4.4 interpolated linearly.
 Particle raindrop(double diameter);
-// A mesh file scaled by `scale`; it must be closed: every edge in exactly two triangles.
-// smooth: the triangles approximate a smooth surface (a measured drop), whose normals
-// are interpolated from the vertices; otherwise its faces are flat (a crystal).
-Particle mesh(const std::string& path, double scale, bool smooth);
+// A mesh (read from a file, or made from arrays: arcus_mesh_t) scaled by `scale`; it
+// must be closed: every edge in exactly two triangles.  smooth: the triangles
+// approximate a smooth surface (a measured drop), whose normals are interpolated from
+// the vertices; otherwise its faces are flat (a crystal).
+Particle mesh(geometry::Mesh mesh, double scale, bool smooth);
 
 // Per vertex of `mesh`, the area-weighted mean of its triangles' normals, in the
 // triangles' winding (unit; 3 per vertex).

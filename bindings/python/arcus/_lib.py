@@ -170,6 +170,7 @@ _PROTOTYPES = {
     "arcus_particle_create_sphere": (_status, [_handle, c_double, _out_handle]),
     "arcus_particle_create_raindrop": (_status, [_handle, c_double, _out_handle]),
     "arcus_particle_create_mesh": (_status, [_handle, c_char_p, c_double, c_int32, _out_handle]),
+    "arcus_particle_create_from_mesh": (_status, [_handle, c_double, c_int32, _out_handle]),
     "arcus_particle_retain": (_status, [_handle]),
     "arcus_particle_release": (_status, [_handle]),
     "arcus_particle_get_info": (_status, [_handle, POINTER(ParticleInfoStruct)]),
