@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 import arcus
+import arcus.halo as halo
 import arcus.mie as mie
 import arcus.rainbow as rainbow
 
@@ -285,6 +286,75 @@ def test_bad_meshes(ctx, tmp_path):
     with pytest.raises(arcus.ArgumentError, match="not closed") as info:
         rainbow.phase_function(rainbow.Mesh(open_mesh, 1e-3), NM, THETA, grid=GRID, context=ctx)
     assert "3 of its 3 edges" in info.value.message
+
+
+def _prism_arrays():
+    """A hexagonal column (arcus.halo's) with coordinates exact in single precision,
+    as the library reads files: the same mesh from arrays and from a file."""
+    vertices, triangles = halo.hexagonal_prism(2.0)
+    return vertices.astype(np.float32).astype(np.float64), triangles
+
+
+def test_mesh_from_arrays_is_the_mesh_from_its_file(ctx, tmp_path):
+    """Determinism: Mesh.from_arrays and Mesh(path) of the same vertices and triangles
+    give the same particle and, cast, the same table, stats and glints, exactly."""
+    vertices, triangles = _prism_arrays()
+    path = tmp_path / "column.obj"
+    path.write_text("".join("v %r %r %r\n" % tuple(float(c) for c in v) for v in vertices)
+                    + "".join("f %d %d %d\n" % tuple(int(i) + 1 for i in t) for t in triangles))
+    theta = np.arange(0.0, 180.0, 0.5)
+    c, s = math.cos(0.4), math.sin(0.4)
+    rotation = np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]]) @ np.array([[1.0, 0, 0], [0, c, -s], [0, s, c]])
+    for smooth in (True, False):
+        from_file = rainbow.Mesh(path, scale=1e-4, smooth=smooth)
+        from_arrays = rainbow.Mesh.from_arrays(vertices, triangles, scale=1e-4, smooth=smooth)
+        assert from_arrays.info(ctx) == from_file.info(ctx)
+        a, b = (rainbow.phase_function(m, NM, theta, grid=64, rotation=rotation, context=ctx)
+                for m in (from_file, from_arrays))
+        for name in ("parallel", "perpendicular", "per_bounce"):
+            np.testing.assert_array_equal(getattr(a, name), getattr(b, name), err_msg=name)
+        for key, value in a.stats.items():
+            if "seconds" not in key:
+                np.testing.assert_array_equal(value, b.stats[key], err_msg=key)
+        assert (a.glints is None) == (b.glints is None) == smooth
+        for key in a.glints or {}:
+            np.testing.assert_array_equal(a.glints[key], b.glints[key], err_msg=key)
+
+
+def test_mesh_from_arrays_copies_and_checks_its_arrays(ctx):
+    """Shapes and types are refused at once, values by the library at first use, each
+    naming the array; the arrays are copied."""
+    vertices, triangles = _prism_arrays()
+    mine = vertices.copy()
+    mesh = rainbow.Mesh.from_arrays(mine, triangles.tolist(), scale=1e-4, smooth=False)
+    mine[:] = np.nan
+    info = mesh.info(ctx)
+    assert info["kind"] == "mesh" and info["triangles"] == 20
+    assert repr(mesh) == "Mesh.from_arrays(<12 vertices>, <20 triangles>, scale=0.0001, smooth=False)"
+    assert mesh.path is None and not mesh.vertices.flags.writeable
+
+    def refused(v, t, match):
+        with pytest.raises(arcus.ArgumentError, match=match) as info:
+            rainbow.Mesh.from_arrays(v, t, scale=1e-4).info(ctx)
+        assert info.value.status == "ARCUS_ERROR_INVALID_ARGUMENT"
+
+    bad = vertices.copy()
+    bad[1, 1] = np.nan
+    refused(bad, triangles, r"vertices\[4\] = nan is not finite")
+    bad = triangles.copy()
+    bad[2, 1] = 12
+    refused(vertices, bad, r"indices\[7\] = 12 is not below vertex_count 12")
+    refused(vertices, np.zeros((0, 3), dtype=int), "triangle_count is 0")
+    refused(vertices, triangles[:-1], "the mesh is not closed")
+    refused(vertices[:, :2], triangles, r"vertices must have shape \(N, 3\)")
+    refused(vertices, triangles.astype(float), "triangles must be an")
+    refused(vertices, triangles.ravel(), "triangles must be an")
+    bad = triangles.copy()
+    bad[0, 1] = -1
+    refused(vertices, bad, r"triangles\[0, 1\] = -1 is not a vertex index")
+    refused("vertices", triangles, "vertices must be an array of real numbers")
+    with pytest.raises(arcus.ArgumentError, match="smooth"):
+        rainbow.Mesh.from_arrays(vertices, triangles, smooth=1)
 
 
 def test_progress_and_cancel(ctx):

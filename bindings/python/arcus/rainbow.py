@@ -11,9 +11,9 @@
     print(r.unpolarized, r.per_bounce[:, 2], r.refractive_index, r.stats["patches"])
 
 A particle is a description (plain Python values: :class:`Sphere`, :class:`Raindrop`,
-:class:`Mesh`); the library's particle is created on a context the first time it is
-used there (``context=`` one of yours, else a new one on the default device).  The
-library casts a grid of rays at the particle, follows each through p = 0..P
+:class:`Mesh`, of a file or of arrays); the library's particle is created on a context
+the first time it is used there (``context=`` one of yours, else a new one on the
+default device).  The library casts a grid of rays at the particle, follows each through p = 0..P
 (p − 1 internal reflections) with the phasors of both incident polarisations, and
 collects them on a sphere of patches that is queried at the directions asked for,
 adding the patches' phasors with their phases (interference) or their intensities.
@@ -170,9 +170,12 @@ class Raindrop(Particle):
 
 
 class Mesh(Particle):
-    """A closed triangle mesh file (OBJ, PLY, OFF, STL) read by the library, its
-    coordinates multiplied by ``scale`` to give metres.  The file is read when the
-    particle is first used; a missing file or an open mesh raises then.
+    """A closed triangle mesh, its coordinates multiplied by ``scale`` to give metres:
+    ``Mesh(path)`` a file (OBJ, PLY, OFF, STL) read by the library,
+    :meth:`Mesh.from_arrays` vertices and triangles in memory.  The same vertices and
+    triangles give the same particle either way.  The library's mesh is made when the
+    particle is first used on a context; a missing file, bad arrays or an open mesh
+    raise then.
 
     ``smooth`` says what the triangles stand for:
 
@@ -194,14 +197,59 @@ class Mesh(Particle):
         super().__init__()
         self._path = to_path(path, "path")
         self.path = path
+        self.vertices = self.triangles = None
         self.scale = to_float(scale, "scale")
         self.smooth = to_bool(smooth, "smooth")
 
+    @classmethod
+    def from_arrays(cls, vertices, triangles, scale=1.0, smooth=True):
+        """A mesh of ``vertices`` ((N, 3) real numbers: x y z each, in the units ``scale``
+        turns into metres) and ``triangles`` ((M, 3) integers: vertex indices from 0),
+        copied: changing the arrays afterwards changes nothing.  Shapes and types are
+        checked here; the values (finite coordinates, indices below N, at least one
+        triangle, a closed mesh) by the library when the particle is first used, whose
+        messages name the C API's flat arrays ("indices[7] = 12 is not below
+        vertex_count 10": row 7 // 3, column 7 % 3 of ``triangles``)."""
+        v = to_real_array(vertices, "vertices")
+        if v.ndim != 2 or v.shape[1] != 3:
+            raise ArgumentError("vertices must have shape (N, 3), got %s" % (v.shape,))
+        t = np.asarray(triangles)
+        if t.dtype.kind not in "iu" or t.ndim != 2 or t.shape[1] != 3:
+            raise ArgumentError("triangles must be an (M, 3) array of integers (vertex indices), got %s of %s"
+                                % (t.shape, t.dtype))
+        outside = (t < 0) | (t > 0xFFFFFFFF)
+        if outside.any():
+            row, col = np.argwhere(outside)[0]
+            raise ArgumentError("triangles[%d, %d] = %d is not a vertex index (0 to 2**32 - 1)"
+                                % (row, col, t[row, col]))
+        mesh = cls.__new__(cls)
+        Particle.__init__(mesh)
+        mesh._path = mesh.path = None
+        mesh.vertices = v.copy()
+        mesh.triangles = np.array(t, dtype=np.uint32, order="C")
+        mesh.vertices.flags.writeable = mesh.triangles.flags.writeable = False
+        mesh.scale = to_float(scale, "scale")
+        mesh.smooth = to_bool(smooth, "smooth")
+        return mesh
+
     def _create(self, ctx_handle, out):
-        return lib.arcus_particle_create_mesh(ctx_handle, self._path, self.scale, int(self.smooth), out)
+        if self.vertices is None:
+            return lib.arcus_particle_create_mesh(ctx_handle, self._path, self.scale, int(self.smooth), out)
+        mesh = c_void_p()
+        status = lib.arcus_mesh_create(ctx_handle, len(self.vertices), _lib.ptr(self.vertices), len(self.triangles),
+                                       _lib.ptr(self.triangles, c_uint32), byref(mesh))
+        if status != 0:
+            return status
+        try:  # the particle keeps its own copy of the mesh
+            return lib.arcus_particle_create_from_mesh(mesh, self.scale, int(self.smooth), out)
+        finally:
+            lib.arcus_mesh_release(mesh)
 
     def __repr__(self):
-        return "Mesh(%r, scale=%r, smooth=%r)" % (self.path, self.scale, self.smooth)
+        if self.vertices is None:
+            return "Mesh(%r, scale=%r, smooth=%r)" % (self.path, self.scale, self.smooth)
+        return "Mesh.from_arrays(<%d vertices>, <%d triangles>, scale=%r, smooth=%r)" % (
+            len(self.vertices), len(self.triangles), self.scale, self.smooth)
 
 
 # ---- the phase function -------------------------------------------------------------
