@@ -252,6 +252,23 @@ def test_crystal_files_match_the_module(repo):
         assert text == halo.off_text(halo.SHAPES[shape])
 
 
+def test_crystal_meshes_are_the_crystal_files(ctx, repo):
+    """crystal_mesh makes its prisms from arrays (no temporary files), rounded to single
+    precision as the files are read: a cast of it and of data/rainbow/crystals/*.off is
+    the same, exactly, so the tables are those the files gave."""
+    rotation = halo.orientations(dict(COLUMNS, orientations=1, seed=5))[0]
+    for name, shape in (("hex_column.off", "column"), ("hex_plate.off", "plate")):
+        mesh = halo.crystal_mesh(shape, 20e-6)
+        assert mesh.path is None and mesh.vertices is not None and halo.crystal_mesh(shape, 20e-6) is mesh
+        from_file = rainbow.Mesh(repo / "data" / "rainbow" / "crystals" / name, scale=20e-6, smooth=False)
+        a, b = (rainbow.phase_function(m, NM, [0.0], grid=32, max_bounces=3, material="ice", rotation=rotation,
+                                       coherent=False, alpha=halo.ALPHA, context=ctx) for m in (mesh, from_file))
+        assert mesh.info(ctx) == from_file.info(ctx)
+        for key in a.glints:
+            np.testing.assert_array_equal(a.glints[key], b.glints[key], err_msg=key)
+        np.testing.assert_array_equal(a.stats["scattered"], b.stats["scattered"])
+
+
 def test_bad_input(ctx):
     theta = np.arange(0.0, 30.0, 0.5)
     good = dict(COLUMNS, orientations=2)

@@ -41,11 +41,7 @@ elevation: :func:`parhelion_angle`).
 columns falling with their axes horizontal (tangent and Parry arcs) are not modelled.
 """
 
-import atexit
 import math
-import os
-import shutil
-import tempfile
 import threading
 import time
 
@@ -163,14 +159,16 @@ def off_text(aspect):
 
 _meshes = {}
 _mesh_lock = threading.Lock()
-_mesh_dir = []
 
 
 def crystal_mesh(shape, size):
     """The flat-faced :class:`arcus.rainbow.Mesh` of ``shape`` ("column", "plate") with
-    circumscribed radius ``size`` metres; one object per (shape, size), so the library's
-    particle is made once per context.  The OFF file lives in a temporary directory
-    removed at exit."""
+    circumscribed radius ``size`` metres, made from :func:`hexagonal_prism`'s arrays;
+    one object per (shape, size), so the library's particle is made once per context.
+
+    Its coordinates are rounded to single precision, as the library reads them from a
+    mesh file (OpenMesh reads floats): the crystals are those of
+    data/rainbow/crystals/*.off, and their tables those computed from these files."""
     if shape not in SHAPES:
         raise ArgumentError("shape must be one of %s, got %r" % (", ".join(map(repr, SHAPES)), shape))
     size = to_float(size, "size")
@@ -180,21 +178,10 @@ def crystal_mesh(shape, size):
     with _mesh_lock:
         mesh = _meshes.get(key)
         if mesh is None:
-            if not _mesh_dir:
-                path = tempfile.mkdtemp(prefix="arcus-halo-")
-                atexit.register(_remove_mesh_dir, path, os.getpid())
-                _mesh_dir.append(path)
-            path = os.path.join(_mesh_dir[0], "hex_%s.off" % shape)
-            if not os.path.exists(path):
-                with open(path, "w") as f:
-                    f.write(off_text(SHAPES[shape]))
-            mesh = _meshes[key] = rainbow.Mesh(path, scale=size, smooth=False)
+            vertices, triangles = hexagonal_prism(SHAPES[shape])
+            mesh = _meshes[key] = rainbow.Mesh.from_arrays(vertices.astype(np.float32).astype(np.float64), triangles,
+                                                           scale=size, smooth=False)
         return mesh
-
-
-def _remove_mesh_dir(path, owner):
-    if os.getpid() == owner:  # not from a forked child that happens to run atexit handlers
-        shutil.rmtree(path, ignore_errors=True)
 
 
 def projected_areas(vertices, triangles, directions):
