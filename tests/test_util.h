@@ -68,9 +68,17 @@ struct FieldDeleter {
 struct JobDeleter {
   void operator()(arcus_job_t* j) const { arcus_job_release(j); }
 };
+struct MeshDeleter {
+  void operator()(arcus_mesh_t* m) const { arcus_mesh_release(m); }
+};
+struct ParticleDeleter {
+  void operator()(arcus_particle_t* p) const { arcus_particle_release(p); }
+};
 using ContextPtr = std::unique_ptr<arcus_context_t, ContextDeleter>;
 using FieldPtr = std::unique_ptr<arcus_field_t, FieldDeleter>;
 using JobPtr = std::unique_ptr<arcus_job_t, JobDeleter>;
+using MeshPtr = std::unique_ptr<arcus_mesh_t, MeshDeleter>;
+using ParticlePtr = std::unique_ptr<arcus_particle_t, ParticleDeleter>;
 
 // ---- fixture: one context per test suite ------------------------------------------
 class ArcusTest : public ::testing::Test {
