@@ -59,10 +59,10 @@ typedef struct arcus_mesh_s arcus_mesh_t;
  * triangles (`indices`: 3 vertex indices each, from 0; either array may be NULL when its
  * count is 0), copied: the arrays may be freed once the call returns.  It is the same
  * mesh a file with these vertices and triangles gives (arcus_particle_create_mesh),
- * checked the same way: at least one triangle, every
- * coordinate finite, every index below vertex_count, counts of at most 2^31 - 1 and
- * within the host's memory (ARCUS_ERROR_OUT_OF_MEMORY).  How far from the origin it may
- * lie (1e18 m) is checked, in metres, where it is used.  Errors name the argument:
+ * checked the same way: at least one triangle, every coordinate finite, every index
+ * below vertex_count, counts of at most 2^31 - 1 and within the host's memory
+ * (ARCUS_ERROR_OUT_OF_MEMORY).  How far from the origin it may lie (1e18 m) is
+ * checked, in metres, where it is used.  Errors name the argument:
  * "indices[7] = 12 is not below vertex_count 10", "vertices[4] = nan is not finite". */
 ARCUS_API arcus_status arcus_mesh_create(arcus_context_t* ctx, size_t vertex_count, const double* vertices,
                                          size_t triangle_count, const uint32_t* indices, arcus_mesh_t** out);

@@ -9,8 +9,8 @@
 
 namespace arcus::geometry {
 
-// The most vertices or triangles a mesh may have: beyond it indices overflow OpenMesh's
-// ints (and the kernels' int32 triangle indices).
+// The most vertices or faces a mesh may have, from a file or from arrays: beyond it
+// indices overflow OpenMesh's ints.
 constexpr uint64_t kMaxCount = (uint64_t(1) << 31) - 1;
 
 struct Mesh {
