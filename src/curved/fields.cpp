@@ -132,7 +132,9 @@ FieldBuild fisheye(const double* center, double radius, double n0) {
   return b;
 }
 
-FieldBuild atmosphere(const arcus_atmosphere_desc& desc) {
+namespace {
+
+void check_atmosphere(const arcus_atmosphere_desc& desc) {
   require(desc.spherical == 0 || desc.spherical == 1, "atmosphere: spherical must be 0 or 1");
   require(std::isfinite(desc.wavelength) && desc.wavelength >= ARCUS_MIN_WAVELENGTH &&
               desc.wavelength <= ARCUS_MAX_WAVELENGTH,
@@ -148,10 +150,14 @@ FieldBuild atmosphere(const arcus_atmosphere_desc& desc) {
   require(desc.inversion_count <= ARCUS_MAX_INVERSIONS,
           "atmosphere: inversion_count = " + std::to_string(desc.inversion_count) + " exceeds " +
               std::to_string(ARCUS_MAX_INVERSIONS) + " layers");
+}
 
-  const double R = kGeopotentialRadius;
+// The inversions as layers in geopotential height, checked; *out gets every height where
+// the temperature profile bends (the standard breaks and the layers' ends), sorted.
+std::vector<Layer> inversion_layers(const arcus_atmosphere_desc& desc, std::vector<double>* out) {
   std::vector<Layer> layers;
-  std::vector<double> breaks(kStdBase, kStdBase + kStdLayers);
+  std::vector<double>& breaks = *out;
+  breaks.assign(kStdBase, kStdBase + kStdLayers);
   for (uint32_t i = 0; i < desc.inversion_count; ++i) {
     const arcus_inversion& inv = desc.inversions[i];
     const std::string which = "atmosphere: inversions[" + std::to_string(i) + "]";
@@ -161,7 +167,7 @@ FieldBuild atmosphere(const arcus_atmosphere_desc& desc) {
             which + ": need 0 <= base < top <= 84000 m (base " + number(inv.base) + ", top " + number(inv.top) + ")");
     require(std::fabs(inv.delta_t) <= 100.0, which + ": |delta_t| = " + number(std::fabs(inv.delta_t)) +
                                                  " K exceeds 100 K");
-    layers.push_back({geopotential(inv.base, R), geopotential(inv.top, R), inv.delta_t});
+    layers.push_back({geopotential(inv.base, kGeopotentialRadius), geopotential(inv.top, kGeopotentialRadius), inv.delta_t});
     breaks.push_back(layers.back().base_H);
     breaks.push_back(layers.back().top_H);
   }
@@ -174,6 +180,36 @@ FieldBuild atmosphere(const arcus_atmosphere_desc& desc) {
   // lowest segment used to be the surface inversion's own, whose steep gradient,
   // extended down, reached 0 K at -2975 m: rays there crawled and bent wrongly.)
   breaks.insert(breaks.begin(), kBelowSeaLevel);
+  return layers;
+}
+
+// The limits DP45's steps keep to in b (field.h), from the segments' breaks.
+void set_step_limits(const std::vector<double>& breaks, const std::vector<Layer>& layers, FieldBuild* out) {
+  FieldBuild& b = *out;
+  // The thinnest layer in geometric height, and the height of the last break (above it
+  // the air is isothermal and smooth): DP45's steps span at most half of it (field.h).
+  const double R = kGeopotentialRadius;
+  auto geometric = [&](double H) { return R * H / (R - H); };
+  double inversions_top_H = 0;
+  for (const Layer& l : layers) inversions_top_H = std::max(inversions_top_H, l.top_H);
+  b.desc.inversions_top = geometric(inversions_top_H);
+  b.desc.layer = b.desc.layer_above = INFINITY;
+  for (size_t k = 1; k + 1 < breaks.size(); ++k) {  // from sea level: the segment below is no layer
+    const double thickness = geometric(breaks[k + 1]) - geometric(breaks[k]);
+    double& thinnest = breaks[k + 1] <= inversions_top_H ? b.desc.layer : b.desc.layer_above;
+    thinnest = std::min(thinnest, thickness);
+  }
+  // Without inversions every layer is a standard one: the same limit everywhere.
+  if (!std::isfinite(b.desc.layer)) b.desc.layer = b.desc.layer_above;
+  b.desc.layers_top = geometric(breaks.back());
+}
+
+}  // namespace
+
+FieldBuild atmosphere(const arcus_atmosphere_desc& desc) {
+  check_atmosphere(desc);
+  std::vector<double> breaks;
+  const std::vector<Layer> layers = inversion_layers(desc, &breaks);
 
   auto temperature = [&](double H) {
     return standard_temperature(H, desc.sea_level_temperature) + inversion_offset(H, layers);
@@ -214,21 +250,7 @@ FieldBuild atmosphere(const arcus_atmosphere_desc& desc) {
   b.desc.earth_radius = ARCUS_EARTH_RADIUS;
   b.desc.geopotential_radius = kGeopotentialRadius;
   b.desc.count = static_cast<int32_t>(breaks.size());
-  // The thinnest layer in geometric height, and the height of the last break (above it
-  // the air is isothermal and smooth): DP45's steps span at most half of it (field.h).
-  auto geometric = [&](double H) { return R * H / (R - H); };
-  double inversions_top_H = 0;
-  for (const Layer& l : layers) inversions_top_H = std::max(inversions_top_H, l.top_H);
-  b.desc.inversions_top = geometric(inversions_top_H);
-  b.desc.layer = b.desc.layer_above = INFINITY;
-  for (size_t k = 1; k + 1 < breaks.size(); ++k) {  // from sea level: the segment below is no layer
-    const double thickness = geometric(breaks[k + 1]) - geometric(breaks[k]);
-    double& thinnest = breaks[k + 1] <= inversions_top_H ? b.desc.layer : b.desc.layer_above;
-    thinnest = std::min(thinnest, thickness);
-  }
-  // Without inversions every layer is a standard one: the same limit everywhere.
-  if (!std::isfinite(b.desc.layer)) b.desc.layer = b.desc.layer_above;
-  b.desc.layers_top = geometric(breaks.back());
+  set_step_limits(breaks, layers, &b);
   b.desc.refractivity = ciddor_refractivity(desc.wavelength);
   return b;
 }

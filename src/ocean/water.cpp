@@ -377,6 +377,64 @@ double emission_density(int process, double excitation_nm, double emission_nm) {
   fail(ARCUS_ERROR_INVALID_ARGUMENT, "process " + std::to_string(process) + ": unknown");
 }
 
+namespace {
+
+// Emission on the grid, restricted to it and renormalised by the trapezoid rule (what
+// the kernel's piecewise-linear sampling inverts).  A row that misses every sample
+// counts as leaving the range.
+void emission_on_grid(bool anti_stokes, WaterTables* out) {
+  WaterTables& t = *out;
+  const Grid& grid = t.grid;
+  const size_t n = size_t(grid.count);
+  for (int p = 0; p < kProcessCount; ++p) {
+    for (size_t k = 0; k < n; ++k) {
+      const size_t row = k * n;
+      if (t.inside[p][k] > 0) {
+        for (size_t m = 0; m < n; ++m)
+          t.emission[p][row + m] =
+              anti_stokes || m > k ? emission_density(p, grid.nm(int(k)), grid.nm(int(m))) : 0.0;
+        const double total = trapezoid(t.emission[p], grid.step_nm, row, n);
+        if (total > 0 && std::isfinite(total)) {
+          double sum = 0;
+          for (size_t m = 1; m < n; ++m) {
+            sum += 0.5 * (t.emission[p][row + m] + t.emission[p][row + m - 1]) * grid.step_nm;
+            t.cdf[p][row + m] = sum / total;
+          }
+          t.cdf[p][row + n - 1] = 1;
+          for (size_t m = 0; m < n; ++m) t.emission[p][row + m] /= total;
+          continue;
+        }
+      }
+      t.inside[p][k] = 0;
+      std::fill(t.emission[p].begin() + row, t.emission[p].begin() + row + n, 0.0);
+    }
+  }
+}
+
+// Events (thesis §4.2): an inelastic process' event is a_j·Y·P_in, its absorption event
+// the rest of a_j (photons that would leave the range are absorbed).
+void fill_events(WaterTables* out) {
+  WaterTables& t = *out;
+  const size_t n = size_t(t.grid.count);
+  for (size_t k = 0; k < n; ++k) {
+    const double raman_in = t.absorption[0][k] * t.yield[kRamanProcess][k] * t.inside[kRamanProcess][k];
+    const double phyto_in = t.absorption[2][k] * t.yield[kChlorophyll][k] * t.inside[kChlorophyll][k];
+    const double cdom_in = t.absorption[3][k] * t.yield[kCdomProcess][k] * t.inside[kCdomProcess][k];
+    t.event[kAbsorbWater][k] = t.absorption[0][k] - raman_in;
+    t.event[kRaman][k] = raman_in;
+    t.event[kAbsorbDetritus][k] = t.absorption[1][k];
+    t.event[kAbsorbPhyto][k] = t.absorption[2][k] - phyto_in;
+    t.event[kFluorescePhyto][k] = phyto_in;
+    t.event[kAbsorbCdom][k] = t.absorption[3][k] - cdom_in;
+    t.event[kFluoresceCdom][k] = cdom_in;
+    t.event[kScatterWater][k] = t.scattering[0][k];
+    t.event[kScatterDetritus][k] = t.scattering[1][k];
+    t.event[kScatterPhyto][k] = t.scattering[2][k];
+  }
+}
+
+}  // namespace
+
 WaterTables evaluate(const Water& water, const Grid& grid) {
   check_grid(grid);
   check_water(water);
@@ -440,50 +498,8 @@ WaterTables evaluate(const Water& water, const Grid& grid) {
     for (int p = 0; p < kProcessCount; ++p) t.inside[p][k] = inside_probability(p, nm, anti_stokes ? lo : nm, hi);
   }
 
-  // Emission on the grid, restricted to it and renormalised by the trapezoid rule (what
-  // the kernel's piecewise-linear sampling inverts).  A row that misses every sample
-  // counts as leaving the range.
-  for (int p = 0; p < kProcessCount; ++p) {
-    for (size_t k = 0; k < n; ++k) {
-      const size_t row = k * n;
-      if (t.inside[p][k] > 0) {
-        for (size_t m = 0; m < n; ++m)
-          t.emission[p][row + m] =
-              anti_stokes || m > k ? emission_density(p, grid.nm(int(k)), grid.nm(int(m))) : 0.0;
-        const double total = trapezoid(t.emission[p], grid.step_nm, row, n);
-        if (total > 0 && std::isfinite(total)) {
-          double sum = 0;
-          for (size_t m = 1; m < n; ++m) {
-            sum += 0.5 * (t.emission[p][row + m] + t.emission[p][row + m - 1]) * grid.step_nm;
-            t.cdf[p][row + m] = sum / total;
-          }
-          t.cdf[p][row + n - 1] = 1;
-          for (size_t m = 0; m < n; ++m) t.emission[p][row + m] /= total;
-          continue;
-        }
-      }
-      t.inside[p][k] = 0;
-      std::fill(t.emission[p].begin() + row, t.emission[p].begin() + row + n, 0.0);
-    }
-  }
-
-  // Events (thesis §4.2): an inelastic process' event is a_j·Y·P_in, its absorption event
-  // the rest of a_j (photons that would leave the range are absorbed).
-  for (size_t k = 0; k < n; ++k) {
-    const double raman_in = t.absorption[0][k] * t.yield[kRamanProcess][k] * t.inside[kRamanProcess][k];
-    const double phyto_in = t.absorption[2][k] * t.yield[kChlorophyll][k] * t.inside[kChlorophyll][k];
-    const double cdom_in = t.absorption[3][k] * t.yield[kCdomProcess][k] * t.inside[kCdomProcess][k];
-    t.event[kAbsorbWater][k] = t.absorption[0][k] - raman_in;
-    t.event[kRaman][k] = raman_in;
-    t.event[kAbsorbDetritus][k] = t.absorption[1][k];
-    t.event[kAbsorbPhyto][k] = t.absorption[2][k] - phyto_in;
-    t.event[kFluorescePhyto][k] = phyto_in;
-    t.event[kAbsorbCdom][k] = t.absorption[3][k] - cdom_in;
-    t.event[kFluoresceCdom][k] = cdom_in;
-    t.event[kScatterWater][k] = t.scattering[0][k];
-    t.event[kScatterDetritus][k] = t.scattering[1][k];
-    t.event[kScatterPhyto][k] = t.scattering[2][k];
-  }
+  emission_on_grid(anti_stokes, &t);
+  fill_events(&t);
   return t;
 }
 

@@ -236,6 +236,8 @@ std::vector<double> phase_function(const Amplitudes& s, double x, double q_sca) 
   return std::move(p.parallel);
 }
 
+// One pass over the terms n: the Riccati–Bessel functions at x and m·x come out of one
+// shared recurrence, each n's Debye terms need them all, so the pass is kept whole.
 DebyeCoefficients debye_coefficients(double x, complex m, int max_p) {
   check_sphere(x, m);
   require(max_p >= 0 && max_p <= 1000, "mie: max_p must be in [0, 1000] (got " + std::to_string(max_p) + ")");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include "core/error.h"
@@ -237,6 +238,50 @@ namespace {
 // the traced pixels' paths recorded now and the other pixels' walked along mirrored
 // and interpolated ones; rays whose walk is unresolved are traced.  Smart step
 // selection predicts from the last frame, or from the pixels a walked ray derives from.
+// The frame's paths: the cache's when it holds this frame's, else recorded now for the
+// traced pixels (then *fresh owns them and `done` marks the pixels already traced).
+const PathFrame* frame_paths(arcus_context_t* ctx, arcus_renderer_s* r, const Frame& f,
+                             const std::vector<int32_t>* previous, Primary* prim, std::vector<char>* done,
+                             arcus_render_stats* st, std::unique_ptr<PathFrame>* fresh) {
+  const CameraDesc& c = r->camera;
+  const size_t n = static_cast<size_t>(c.width) * c.height;
+  if ((r->techniques & ARCUS_TECHNIQUE_PATH_CACHE) && r->cached_paths && r->cached_paths->rays.size() == n) {
+    st->rays_cached = n;
+    return r->cached_paths.get();
+  }
+  // Room for the paths the last frame saw (else a probe's).
+  uint64_t steps = r->previous_steps;
+  if (steps == 0) {
+    // No frame yet: a coarse probe (every 16th pixel), which costs a sixteenth of a frame.
+    Batch probe;
+    for (uint32_t j = 0; j < c.height; j += kCoarse)
+      for (uint32_t i = 0; i < c.width; i += kCoarse)
+        probe.add(f.origin, pixel_direction(f, c, i, j), static_cast<size_t>(j) * c.width + i, -1);
+    steps = probe_steps(ctx, r->scene, r->params, probe, &st->trace_seconds);
+  }
+  *fresh = std::make_unique<PathFrame>(pixel_paths(ctx, r, f, path_room(steps), previous, prim, done, st));
+  return fresh->get();
+}
+
+// Walks that ran past the end of a path cut short by a hit: traced from the start, the
+// tests of the walk counted too.
+void trace_unresolved(arcus_context_t* ctx, arcus_renderer_s* r, const Frame& f, Primary* prim,
+                      arcus_render_stats* st) {
+  const CameraDesc& c = r->camera;
+  Batch unresolved;
+  for (uint32_t j = 0; j < c.height; ++j)
+    for (uint32_t i = 0; i < c.width; ++i) {
+      const size_t p = static_cast<size_t>(j) * c.width + i;
+      if (prim->status[p] == ARCUS_STATUS_UNRESOLVED) unresolved.add(f.origin, pixel_direction(f, c, i, j), p, -1);
+    }
+  if (!unresolved.size()) return;
+  st->rays_unresolved += unresolved.size();
+  std::vector<int32_t> walked_tests;
+  for (size_t p : unresolved.pixels) walked_tests.push_back(prim->tests[p]);
+  trace_batch(ctx, r, unresolved, false, NAN, prim, st);
+  for (size_t k = 0; k < unresolved.size(); ++k) prim->tests[unresolved.pixels[k]] += walked_tests[k];
+}
+
 void walk_frame(arcus_context_t* ctx, arcus_renderer_s* r, const Frame& f, Primary* prim, arcus_render_stats* st) {
   const CameraDesc& c = r->camera;
   const size_t n = static_cast<size_t>(c.width) * c.height;
@@ -245,26 +290,8 @@ void walk_frame(arcus_context_t* ctx, arcus_renderer_s* r, const Frame& f, Prima
   const bool temporal = smart && r->previous_hit_step.size() == n;
   const std::vector<int32_t>* previous = temporal ? &r->previous_hit_step : nullptr;
   std::unique_ptr<PathFrame> fresh;
-  const PathFrame* paths = nullptr;
   std::vector<char> done(n, 0);
-  if (cache && r->cached_paths && r->cached_paths->rays.size() == n) {
-    paths = r->cached_paths.get();
-    st->rays_cached = n;
-  } else {
-    // Room for the paths the last frame saw (else a probe's).
-    uint64_t steps = r->previous_steps;
-    if (steps == 0) {
-      // No frame yet: a coarse probe (every 16th pixel), which costs a sixteenth of a frame.
-      Batch probe;
-      for (uint32_t j = 0; j < c.height; j += kCoarse)
-        for (uint32_t i = 0; i < c.width; i += kCoarse)
-          probe.add(f.origin, pixel_direction(f, c, i, j), static_cast<size_t>(j) * c.width + i, -1);
-      steps = probe_steps(ctx, r->scene, r->params, probe, &st->trace_seconds);
-    }
-    const uint32_t hint = path_room(steps);
-    fresh = std::make_unique<PathFrame>(pixel_paths(ctx, r, f, hint, previous, prim, &done, st));
-    paths = fresh.get();
-  }
+  const PathFrame* paths = frame_paths(ctx, r, f, previous, prim, &done, st, &fresh);
   prim->features |= paths->features;
   const auto walk_start = Clock::now();
   // The cache's chunks proved once, for the walks of this frame and the later ones.
@@ -303,20 +330,7 @@ void walk_frame(arcus_context_t* ctx, arcus_renderer_s* r, const Frame& f, Prima
     walk_pixels(pixels, predictions);
   }
   st->walk_seconds += since(walk_start);
-  // Walks that ran past the end of a path cut short by a hit: traced from the start.
-  Batch unresolved;
-  for (uint32_t j = 0; j < c.height; ++j)
-    for (uint32_t i = 0; i < c.width; ++i) {
-      const size_t p = static_cast<size_t>(j) * c.width + i;
-      if (prim->status[p] == ARCUS_STATUS_UNRESOLVED) unresolved.add(f.origin, pixel_direction(f, c, i, j), p, -1);
-    }
-  if (unresolved.size()) {
-    st->rays_unresolved += unresolved.size();
-    std::vector<int32_t> walked_tests;
-    for (size_t p : unresolved.pixels) walked_tests.push_back(prim->tests[p]);
-    trace_batch(ctx, r, unresolved, false, NAN, prim, st);
-    for (size_t k = 0; k < unresolved.size(); ++k) prim->tests[unresolved.pixels[k]] += walked_tests[k];
-  }
+  trace_unresolved(ctx, r, f, prim, st);
   if (cache) {
     if (fresh) r->cached_paths = std::move(fresh);
     st->cache_bytes = r->cached_paths->paths.bytes() + r->cached_paths->rays.size() * sizeof(WalkRay);
@@ -361,6 +375,74 @@ class ProgressScope {
 
 }  // namespace
 
+namespace {
+
+// Spectral (thesis §2.2; README, "Spectral rendering"): each wavelength's rays are
+// traced through the dispersive medium and shaded, and the spectral radiance is
+// integrated against the CIE 1931 colour-matching functions into XYZ, then sRGB.
+// *prim gets the first wavelength's figures; returns the seconds spent shading.
+double spectral_frame(arcus_context_t* ctx, arcus_renderer_s* r, const Frame& f, RenderJob* job, Primary* prim,
+                      arcus_render_stats* st, StageProgress* stage, const std::function<void(double)>& report) {
+  const std::vector<double>& wavelengths = r->scene->desc.wavelengths;
+  const size_t n = prim->status.size();
+  r->cached_paths.reset();
+  const auto weights = spectral::band_weights(wavelengths);
+  std::vector<std::array<double, 3>> xyz(n, std::array<double, 3>{0, 0, 0});
+  double shade_seconds = 0;
+  for (size_t k = 0; k < wavelengths.size(); ++k) {
+    Primary pk(n);
+    direct_pass(ctx, r, f, wavelengths[k], &pk, st);
+    const auto t = Clock::now();
+    shade(ctx, r, pk, job);
+    for (size_t p = 0; p < n; ++p) {
+      const double L = spectral_radiance(*r->scene, f, pk, p, &job->rgb[3 * p], wavelengths[k]);
+      for (int c3 = 0; c3 < 3; ++c3) xyz[p][c3] += L * weights[k][c3];
+    }
+    shade_seconds += since(t);
+    job->features |= pk.features;
+    if (k == 0) *prim = std::move(pk);  // the figures of the first wavelength
+    report(0.8 * (k + 1) / wavelengths.size());
+    stage->base = 0.8 * (k + 1) / wavelengths.size();
+    stage->span = 0.8 / wavelengths.size();
+  }
+  for (size_t p = 0; p < n; ++p) {
+    const auto rgb = spectral::xyz_to_linear_srgb(xyz[p]);
+    for (int c3 = 0; c3 < 3; ++c3) job->rgb[3 * p + c3] = static_cast<float>(rgb[c3]);
+  }
+  return shade_seconds;
+}
+
+// The frame's image and per-pixel figures into the job; what the next frame predicts
+// from stays with the renderer.
+void keep_results(arcus_renderer_s* r, Primary* prim, RenderJob* job) {
+  const CameraDesc& c = r->camera;
+  const size_t n = static_cast<size_t>(c.width) * c.height;
+  arcus_render_stats& st = job->render_stats;
+  image::require_finite_pixels(job->rgb, static_cast<int>(c.width), "RGB", "the render");
+  job->width = c.width;
+  job->height = c.height;
+  job->exposure = r->scene->desc.exposure;
+  job->count = n;
+  job->points = std::move(prim->position);
+  job->objects = std::move(prim->object);
+  job->primitives = std::move(prim->primitive);
+  job->distances = std::move(prim->length);
+  job->steps.resize(n);
+  job->tests.resize(n);
+  for (size_t p = 0; p < n; ++p) {
+    job->steps[p] = static_cast<uint32_t>(prim->steps[p]);
+    job->tests[p] = static_cast<uint32_t>(prim->tests[p]);
+    st.steps += prim->steps[p];
+    st.tests += static_cast<uint64_t>(prim->tests[p]);
+  }
+  r->previous_hit_step = std::move(prim->end_step);
+  // Room enough in the next frame's recorded paths for all but a few.
+  r->previous_steps = percentile999(prim->steps);
+  job->features |= prim->features;
+}
+
+}  // namespace
+
 std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_callback progress, void* user) {
   const auto start = Clock::now();
   arcus_context_t* ctx = r->owner();
@@ -395,32 +477,7 @@ std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_call
   report(0.0);
   double shade_seconds = 0;
   if (!wavelengths.empty()) {
-    // Spectral (thesis §2.2; README, "Spectral rendering"): each wavelength's rays are
-    // traced through the dispersive medium and shaded, and the spectral radiance is
-    // integrated against the CIE 1931 colour-matching functions into XYZ, then sRGB.
-    r->cached_paths.reset();
-    const auto weights = spectral::band_weights(wavelengths);
-    std::vector<std::array<double, 3>> xyz(n, std::array<double, 3>{0, 0, 0});
-    for (size_t k = 0; k < wavelengths.size(); ++k) {
-      Primary pk(n);
-      direct_pass(ctx, r, f, wavelengths[k], &pk, &st);
-      const auto t = Clock::now();
-      shade(ctx, r, pk, job.get());
-      for (size_t p = 0; p < n; ++p) {
-        const double L = spectral_radiance(*r->scene, f, pk, p, &job->rgb[3 * p], wavelengths[k]);
-        for (int c3 = 0; c3 < 3; ++c3) xyz[p][c3] += L * weights[k][c3];
-      }
-      shade_seconds += since(t);
-      job->features |= pk.features;
-      if (k == 0) prim = std::move(pk);  // the figures of the first wavelength
-      report(0.8 * (k + 1) / wavelengths.size());
-      stage.base = 0.8 * (k + 1) / wavelengths.size();
-      stage.span = 0.8 / wavelengths.size();
-    }
-    for (size_t p = 0; p < n; ++p) {
-      const auto rgb = spectral::xyz_to_linear_srgb(xyz[p]);
-      for (int c3 = 0; c3 < 3; ++c3) job->rgb[3 * p + c3] = static_cast<float>(rgb[c3]);
-    }
+    shade_seconds = spectral_frame(ctx, r, f, job.get(), &prim, &st, &stage, report);
   } else {
     if (r->techniques & path_based)
       walk_frame(ctx, r, f, &prim, &st);
@@ -432,28 +489,7 @@ std::unique_ptr<RenderJob> render_frame(arcus_renderer_s* r, arcus_progress_call
     shade_seconds = since(t);
   }
   st.shade_seconds = shade_seconds - st.photon_seconds;  // shade() shoots the photons too
-
-  image::require_finite_pixels(job->rgb, static_cast<int>(c.width), "RGB", "the render");
-  job->width = c.width;
-  job->height = c.height;
-  job->exposure = r->scene->desc.exposure;
-  job->count = n;
-  job->points = std::move(prim.position);
-  job->objects = std::move(prim.object);
-  job->primitives = std::move(prim.primitive);
-  job->distances = std::move(prim.length);
-  job->steps.resize(n);
-  job->tests.resize(n);
-  for (size_t p = 0; p < n; ++p) {
-    job->steps[p] = static_cast<uint32_t>(prim.steps[p]);
-    job->tests[p] = static_cast<uint32_t>(prim.tests[p]);
-    st.steps += prim.steps[p];
-    st.tests += static_cast<uint64_t>(prim.tests[p]);
-  }
-  r->previous_hit_step = std::move(prim.end_step);
-  // Room enough in the next frame's recorded paths for all but a few.
-  r->previous_steps = percentile999(prim.steps);
-  job->features |= prim.features;
+  keep_results(r, &prim, job.get());
   st.total_seconds = since(start);
   job->stats.total_seconds = st.total_seconds;
   report(1.0);

@@ -43,90 +43,72 @@ std::string key(size_t object, const char* member) {
   return "$.objects[" + std::to_string(object) + "]." + member;
 }
 
-// Everything is read and built before the context's lock is taken; only the library
-// objects are created under it.
-arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::Locked& locked) {
-  auto scene = std::make_unique<RenderScene>(ctx);
-  RenderDesc& d = scene->desc;
-  d = parse_render_file(path);
-  curved::FieldBuild field = curved::build_scene_medium(d.medium, d.params, path);
+using Bounds = std::array<double, 3>;
 
-  std::array<double, 3> lo, hi;
-  lo.fill(INFINITY);
-  hi.fill(-INFINITY);
-  grow(&lo, &hi, d.camera.position.array().data());
-  std::vector<geometry::Mesh> meshes;
-  for (size_t i = 0; i < d.objects.size(); ++i) {
-    const ObjectDesc& o = d.objects[i];
-    if (o.kind == ObjectKind::Mesh) {
-      geometry::Mesh mesh;
-      try {
-        double m[12];
-        object_matrix(o, m);
-        mesh = geometry::transformed(geometry::load_mesh(o.file), m);
-      } catch (const Error& e) {
-        fail(e.status(), path + ": " + key(i, "file") + ": " + e.what());
-      }
-      for (size_t v = 0; v < mesh.vertex_count(); ++v) grow(&lo, &hi, &mesh.positions[3 * v]);
-      std::vector<double> uvs;
-      if (!mesh.uvs.empty())
-        for (size_t t = 0; t < mesh.triangle_count(); ++t)
-          for (int c = 0; c < 3; ++c) {
-            const uint32_t v = mesh.triangles[3 * t + c];
-            uvs.push_back(mesh.uvs[2 * v]);
-            uvs.push_back(mesh.uvs[2 * v + 1]);
-          }
-      scene->mesh_uvs.push_back(std::move(uvs));
-      scene->mesh_object.push_back(static_cast<int32_t>(i));
-      meshes.push_back(std::move(mesh));
-    } else {
-      require(scene->shapes.size() < ARCUS_MAX_SHAPES,
-              path + ": $.objects: more than " + std::to_string(ARCUS_MAX_SHAPES) + " spheres and discs");
-      arcus_shape_d s{};
-      for (int a = 0; a < 3; ++a) {
-        s.center[a] = o.center[a];
-        s.normal[a] = o.normal[a];
-      }
-      s.radius = o.radius;
-      s.kind = o.kind == ObjectKind::Sphere ? ARCUS_SHAPE_SPHERE : ARCUS_SHAPE_DISC;
-      for (int a = 0; a < 3; ++a) {
-        // A disc's extent along an axis is r·sqrt(1 − n_a²).
-        const double half = o.kind == ObjectKind::Sphere ? o.radius
-                                                          : o.radius * std::sqrt(std::max(0.0, 1 - o.normal[a] * o.normal[a]));
-        lo[a] = std::min(lo[a], o.center[a] - half);
-        hi[a] = std::max(hi[a], o.center[a] + half);
-      }
-      scene->shapes.push_back(s);
-      scene->shape_object.push_back(static_cast<int32_t>(i));
-    }
+// Object i, a mesh: read, placed, its texture coordinates per corner, grown into lo/hi.
+geometry::Mesh add_mesh(RenderScene* scene, const ObjectDesc& o, size_t i, const std::string& path, Bounds* lo,
+                        Bounds* hi) {
+  geometry::Mesh mesh;
+  try {
+    double m[12];
+    object_matrix(o, m);
+    mesh = geometry::transformed(geometry::load_mesh(o.file), m);
+  } catch (const Error& e) {
+    fail(e.status(), path + ": " + key(i, "file") + ": " + e.what());
   }
-  std::vector<const geometry::Mesh*> pointers;
-  for (const auto& m : meshes) pointers.push_back(&m);
-  if (!pointers.empty()) {
-    scene->triangles = bvh::build_triangles(pointers);
-    const auto& order = scene->triangles.tree.order;
-    scene->slot_of.resize(order.size());
-    for (size_t slot = 0; slot < order.size(); ++slot) scene->slot_of[order[slot]] = static_cast<uint32_t>(slot);
-  }
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) grow(lo, hi, &mesh.positions[3 * v]);
+  std::vector<double> uvs;
+  if (!mesh.uvs.empty())
+    for (size_t t = 0; t < mesh.triangle_count(); ++t)
+      for (int c = 0; c < 3; ++c) {
+        const uint32_t v = mesh.triangles[3 * t + c];
+        uvs.push_back(mesh.uvs[2 * v]);
+        uvs.push_back(mesh.uvs[2 * v + 1]);
+      }
+  scene->mesh_uvs.push_back(std::move(uvs));
+  scene->mesh_object.push_back(static_cast<int32_t>(i));
+  return mesh;
+}
 
-  // The bounds: the scene's own, else everything grown by 1 % (and 1 m), so that no
-  // primitive lies on the box where rays stop.
-  if (d.has_bounds) {
-    for (int a = 0; a < 3; ++a) {
-      scene->lo[a] = d.params.box_min[a];
-      scene->hi[a] = d.params.box_max[a];
-    }
-  } else {
-    for (int a = 0; a < 3; ++a) {
-      const double margin = 0.01 * (hi[a] - lo[a]) + 1.0;
-      scene->lo[a] = lo[a] - margin;
-      scene->hi[a] = hi[a] + margin;
-    }
+// Object i, a sphere or a disc, grown into lo/hi.
+void add_shape(RenderScene* scene, const ObjectDesc& o, size_t i, const std::string& path, Bounds* lo, Bounds* hi) {
+  require(scene->shapes.size() < ARCUS_MAX_SHAPES,
+          path + ": $.objects: more than " + std::to_string(ARCUS_MAX_SHAPES) + " spheres and discs");
+  arcus_shape_d s{};
+  for (int a = 0; a < 3; ++a) {
+    s.center[a] = o.center[a];
+    s.normal[a] = o.normal[a];
+  }
+  s.radius = o.radius;
+  s.kind = o.kind == ObjectKind::Sphere ? ARCUS_SHAPE_SPHERE : ARCUS_SHAPE_DISC;
+  for (int a = 0; a < 3; ++a) {
+    // A disc's extent along an axis is r·sqrt(1 − n_a²).
+    const double half = o.kind == ObjectKind::Sphere ? o.radius
+                                                      : o.radius * std::sqrt(std::max(0.0, 1 - o.normal[a] * o.normal[a]));
+    (*lo)[a] = std::min((*lo)[a], o.center[a] - half);
+    (*hi)[a] = std::max((*hi)[a], o.center[a] + half);
+  }
+  scene->shapes.push_back(s);
+  scene->shape_object.push_back(static_cast<int32_t>(i));
+}
+
+// The bounds: the scene's own, else everything grown by 1 % (and 1 m), so that no
+// primitive lies on the box where rays stop.  The camera must lie inside.
+void set_bounds(RenderScene* scene, const Bounds& lo, const Bounds& hi, const std::string& path) {
+  const RenderDesc& d = scene->desc;
+  for (int a = 0; a < 3; ++a) {
+    const double margin = 0.01 * (hi[a] - lo[a]) + 1.0;
+    scene->lo[a] = d.has_bounds ? d.params.box_min[a] : lo[a] - margin;
+    scene->hi[a] = d.has_bounds ? d.params.box_max[a] : hi[a] + margin;
   }
   for (int a = 0; a < 3; ++a)
     require(d.camera.position[a] > scene->lo[a] && d.camera.position[a] < scene->hi[a],
             path + ": $.camera.position: the camera must lie inside $.bounds");
+}
 
+// The materials' textures and the sky's image, each error naming its key.
+void read_images(RenderScene* scene, const std::string& path) {
+  const RenderDesc& d = scene->desc;
   scene->textures.resize(d.materials.size());
   for (size_t m = 0; m < d.materials.size(); ++m)
     if (!d.materials[m].texture.empty()) {
@@ -143,6 +125,37 @@ arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::
       fail(e.status(), path + ": $.sky.file: " + e.what());
     }
   }
+}
+
+// Everything is read and built before the context's lock is taken; only the library
+// objects are created under it.
+arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::Locked& locked) {
+  auto scene = std::make_unique<RenderScene>(ctx);
+  RenderDesc& d = scene->desc;
+  d = parse_render_file(path);
+  curved::FieldBuild field = curved::build_scene_medium(d.medium, d.params, path);
+
+  Bounds lo, hi;
+  lo.fill(INFINITY);
+  hi.fill(-INFINITY);
+  grow(&lo, &hi, d.camera.position.array().data());
+  std::vector<geometry::Mesh> meshes;
+  for (size_t i = 0; i < d.objects.size(); ++i) {
+    if (d.objects[i].kind == ObjectKind::Mesh)
+      meshes.push_back(add_mesh(scene.get(), d.objects[i], i, path, &lo, &hi));
+    else
+      add_shape(scene.get(), d.objects[i], i, path, &lo, &hi);
+  }
+  std::vector<const geometry::Mesh*> pointers;
+  for (const auto& m : meshes) pointers.push_back(&m);
+  if (!pointers.empty()) {
+    scene->triangles = bvh::build_triangles(pointers);
+    const auto& order = scene->triangles.tree.order;
+    scene->slot_of.resize(order.size());
+    for (size_t slot = 0; slot < order.size(); ++slot) scene->slot_of[order[slot]] = static_cast<uint32_t>(slot);
+  }
+  set_bounds(scene.get(), lo, hi, path);
+  read_images(scene.get(), path);
 
   scene->name = d.name;
   scene->description = d.description;
