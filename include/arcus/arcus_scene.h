@@ -10,8 +10,9 @@
  * arcus_scene_get_field, arcus_curved_advance_scene, ...).
  *
  * Meshes (arcus_mesh_t) are geometry handed over in memory, as Embree takes it, where
- * a call would otherwise read a mesh file: each engine's header says which calls take
- * one (arcus_rainbow.h: arcus_particle_create_from_mesh).
+ * a call would otherwise read a mesh file: a scene names them (arcus_scene_load_with_meshes)
+ * and each engine's header says which of its calls take one (arcus_rainbow.h:
+ * arcus_particle_create_from_mesh).
  */
 #ifndef ARCUS_SCENE_H
 #define ARCUS_SCENE_H
@@ -23,6 +24,7 @@ extern "C" {
 #endif
 
 typedef struct arcus_scene_s arcus_scene_t;
+typedef struct arcus_mesh_s arcus_mesh_t; /* below: "meshes from memory" */
 
 /* A pinhole camera, shared by every engine that makes a view (arcus_render.h,
  * arcus_ocean.h): the image's rows run top to bottom, y up along `up`; positions in
@@ -40,6 +42,19 @@ typedef struct arcus_camera {
  * file's directory.  Errors: ARCUS_ERROR_IO (the file cannot be read),
  * ARCUS_ERROR_INVALID_ARGUMENT (not valid JSON, or not a valid scene).            */
 ARCUS_API arcus_status arcus_scene_load(arcus_context_t* ctx, const char* path, arcus_scene_t** out);
+
+/* As arcus_scene_load, for a scene whose objects take meshes from memory rather than
+ * files: where a render scene's object says {"type": "mesh", "mesh": "bunny"} (instead
+ * of "file"), the mesh is meshes[i] for the i with mesh_names[i] equal to "bunny".  The
+ * scene copies what it needs: the meshes may be released once the call returns.
+ * mesh_count may be 0 (then both arrays may be NULL).  Errors name the argument:
+ * mesh_names[i] NULL, empty, longer than 1024 bytes or repeated; meshes[i] not a live
+ * mesh of ctx; mesh_count over 65536; a name the file uses that is not given
+ * ("scene.json: $.objects[2].mesh: no mesh named \"bunny\" was given ..."); and a given
+ * mesh the scene does not use (a misspelt name, or an engine that takes no meshes). */
+ARCUS_API arcus_status arcus_scene_load_with_meshes(arcus_context_t* ctx, const char* path, size_t mesh_count,
+                                                    const char* const* mesh_names, arcus_mesh_t* const* meshes,
+                                                    arcus_scene_t** out);
 ARCUS_API arcus_status arcus_scene_retain(arcus_scene_t* scene);
 ARCUS_API arcus_status arcus_scene_release(arcus_scene_t* scene);
 
@@ -52,7 +67,6 @@ ARCUS_API arcus_status arcus_scene_get_document(arcus_scene_t* scene, const char
 ARCUS_API arcus_status arcus_scene_get_engine(arcus_scene_t* scene, const char** engine);
 
 /* ---- meshes from memory ------------------------------------------------------- */
-typedef struct arcus_mesh_s arcus_mesh_t;
 
 /* A triangle mesh of `vertex_count` vertices (`vertices`: x y z each, tightly packed, in
  * metres or in the units a `scale` later turns into metres) and `triangle_count`

@@ -23,7 +23,8 @@ struct CurvedScene : FieldScene {
 
 // Everything is read and built before the context's lock is taken; only the library
 // objects are created under it.  A bad medium is reported with the scene file's name.
-arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::Locked& locked) {
+arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::GivenMeshes&,
+                    const scene::Locked& locked) {
   SceneDesc desc = parse_scene_file(path);
   FieldBuild built = build_scene_medium(desc.medium, desc.params, path);
   auto scene = std::make_unique<CurvedScene>(ctx, std::move(desc));

@@ -342,7 +342,8 @@ OceanSceneDesc parse_document(const Document& doc) {
   return s;
 }
 
-arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::Locked& locked) {
+arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::GivenMeshes&,
+                    const scene::Locked& locked) {
   auto scene = std::make_unique<OceanScene>(ctx);
   const Document doc = Document::from_file(path);
   scene->desc = parse_document(doc);

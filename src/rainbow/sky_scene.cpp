@@ -127,7 +127,8 @@ void check_scene(const Node& root) {
   }
 }
 
-arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::Locked& locked) {
+arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::GivenMeshes&,
+                    const scene::Locked& locked) {
   return scene::document_scene(ctx, path, "rainbow", check_scene, locked);
 }
 

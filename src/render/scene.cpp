@@ -45,16 +45,21 @@ std::string key(size_t object, const char* member) {
 
 using Bounds = std::array<double, 3>;
 
-// Object i, a mesh: read, placed, its texture coordinates per corner, grown into lo/hi.
-geometry::Mesh add_mesh(RenderScene* scene, const ObjectDesc& o, size_t i, const std::string& path, Bounds* lo,
-                        Bounds* hi) {
+// Object i, a mesh (from its file, or given in memory): placed, its texture coordinates
+// per corner, grown into lo/hi.
+geometry::Mesh add_mesh(RenderScene* scene, const ObjectDesc& o, size_t i, const std::string& path,
+                        const scene::GivenMeshes& given, Bounds* lo, Bounds* hi) {
+  double m[12];
+  object_matrix(o, m);
   geometry::Mesh mesh;
-  try {
-    double m[12];
-    object_matrix(o, m);
-    mesh = geometry::transformed(geometry::load_mesh(o.file), m);
-  } catch (const Error& e) {
-    fail(e.status(), path + ": " + key(i, "file") + ": " + e.what());
+  if (!o.mesh_name.empty()) {
+    mesh = geometry::transformed(given.get(o.mesh_name, path + ": " + key(i, "mesh")), m);
+  } else {
+    try {
+      mesh = geometry::transformed(geometry::load_mesh(o.file), m);
+    } catch (const Error& e) {
+      fail(e.status(), path + ": " + key(i, "file") + ": " + e.what());
+    }
   }
   for (size_t v = 0; v < mesh.vertex_count(); ++v) grow(lo, hi, &mesh.positions[3 * v]);
   std::vector<double> uvs;
@@ -129,7 +134,8 @@ void read_images(RenderScene* scene, const std::string& path) {
 
 // Everything is read and built before the context's lock is taken; only the library
 // objects are created under it.
-arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::Locked& locked) {
+arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::GivenMeshes& given,
+                    const scene::Locked& locked) {
   auto scene = std::make_unique<RenderScene>(ctx);
   RenderDesc& d = scene->desc;
   d = parse_render_file(path);
@@ -142,7 +148,7 @@ arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::
   std::vector<geometry::Mesh> meshes;
   for (size_t i = 0; i < d.objects.size(); ++i) {
     if (d.objects[i].kind == ObjectKind::Mesh)
-      meshes.push_back(add_mesh(scene.get(), d.objects[i], i, path, &lo, &hi));
+      meshes.push_back(add_mesh(scene.get(), d.objects[i], i, path, given, &lo, &hi));
     else
       add_shape(scene.get(), d.objects[i], i, path, &lo, &hi);
   }

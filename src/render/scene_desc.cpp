@@ -61,8 +61,14 @@ ObjectDesc parse_object(const Node& o, const std::map<std::string, int>& materia
       {{"mesh", ObjectKind::Mesh}, {"sphere", ObjectKind::Sphere}, {"disc", ObjectKind::Disc}});
   switch (d.kind) {
     case ObjectKind::Mesh:
-      o.expect_object({"type", "file", "material", "translate", "scale", "rotate_deg"});
-      d.file = resolved(o.member("file"), base_dir);
+      o.expect_object({"type", "file", "mesh", "material", "translate", "scale", "rotate_deg"});
+      if (o.find("file") && o.find("mesh")) o.member("mesh").fail("give \"file\" or \"mesh\", not both");
+      if (auto v = o.find("mesh")) {
+        d.mesh_name = v->string();
+        if (d.mesh_name.empty()) v->fail("expected the name of a mesh given with the scene");
+      } else {
+        d.file = resolved(o.member("file"), base_dir);
+      }
       if (auto v = o.find("translate")) d.translate = v->vec3();
       if (auto v = o.find("scale")) {
         if (v->is_number()) {

@@ -29,7 +29,8 @@ enum class ObjectKind { Mesh, Sphere, Disc };
 
 struct ObjectDesc {
   ObjectKind kind = ObjectKind::Mesh;
-  std::string file;  // mesh: absolute path
+  std::string file;       // mesh: absolute path, or empty for
+  std::string mesh_name;  // a mesh given in memory (arcus_scene_load_with_meshes)
   Vec3 translate{0, 0, 0}, scale{1, 1, 1}, rotate_deg{0, 0, 0};  // mesh: scale, then rotate x, y, z, then move
   Vec3 center{0, 0, 0}, normal{0, 1, 0};                        // sphere, disc
   double radius = 1;

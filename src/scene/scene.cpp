@@ -1,5 +1,6 @@
 #include "scene/scene.h"
 
+#include <cstring>
 #include <exception>
 #include <memory>
 #include <utility>
@@ -7,8 +8,10 @@
 
 #include "core/call.h"
 #include "core/error.h"
+#include "geometry/mesh_handle.h"
 #include "scene/json_reader.h"
 
+using arcus::require;
 using arcus::require_pointer;
 using namespace arcus::api;
 
@@ -31,6 +34,25 @@ std::vector<Registered>& loaders() {
 }
 
 }  // namespace
+
+const geometry::Mesh& GivenMeshes::get(const std::string& name, const std::string& where) const {
+  for (const Given& g : given_)
+    if (g.name == name) {
+      g.used = true;
+      return *g.mesh;
+    }
+  std::string names;
+  for (const Given& g : given_) names += (names.empty() ? "" : ", ") + json::quoted(g.name);
+  fail(ARCUS_ERROR_INVALID_ARGUMENT, where + ": no mesh named " + json::quoted(name) +
+                                         " was given (arcus_scene_load_with_meshes; given: " +
+                                         (names.empty() ? "none" : names) + ")");
+}
+
+long GivenMeshes::first_unused() const {
+  for (size_t i = 0; i < given_.size(); ++i)
+    if (!given_[i].used) return static_cast<long>(i);
+  return -1;
+}
 
 void register_loader(const char* engine, Loader loader, const char* marker, int precedence) {
   loaders().push_back({engine, marker, precedence, std::move(loader)});
@@ -79,6 +101,11 @@ const Loader& loader_for(const std::string& path) {
 
 namespace {
 
+// Bounds on arcus_scene_load_with_meshes' arguments, so that a wrong count is refused
+// before anything is read from the arrays.
+constexpr size_t kMaxGivenMeshes = 1 << 16;
+constexpr size_t kMaxMeshName = 1024;
+
 template <class Body>
 arcus_status on_scene(arcus_scene_t* scene, Body&& body) {
   return simple<arcus_scene_s>(scene, arcus::scene::kSceneHandle, "scene", body);
@@ -98,27 +125,69 @@ arcus_status get_string(arcus_scene_t* scene, const char** out, const char* name
 extern "C" {
 
 arcus_status arcus_scene_load(arcus_context_t* ctx, const char* path, arcus_scene_t** out) {
+  return arcus_scene_load_with_meshes(ctx, path, 0, nullptr, nullptr, out);
+}
+
+arcus_status arcus_scene_load_with_meshes(arcus_context_t* ctx, const char* path, size_t mesh_count,
+                                          const char* const* mesh_names, arcus_mesh_t* const* meshes,
+                                          arcus_scene_t** out) {
   // Reading and checking the file happen before the context's lock is taken; the loader
   // takes it only to create objects.  Errors of either part are reported under the lock.
   arcus_status status;
   const arcus::HandleRef held = hold(ctx, arcus::kContextHandle, "ctx", &status);  // alive while unlocked
   if (!held) return status;
-  arcus_scene_s* scene = nullptr;
-  std::exception_ptr failed;
-  if (out && path) {
-    try {
-      scene = arcus::scene::loader_for(path)(ctx, path, [&](const std::function<void()>& create) {
-        arcus::ContextLock lock(ctx);
-        create();
-      });
-    } catch (...) {
-      failed = std::current_exception();
-    }
-  }
-  return simple<arcus_context_s>(ctx, arcus::kContextHandle, "ctx", [&](arcus_context_s*) {
+  // The arguments, checked under the lock; each mesh is held (not copied) while the file
+  // is read unlocked: its geometry never changes once made.
+  std::vector<arcus::HandleRef> held_meshes;
+  arcus::scene::GivenMeshes given;
+  status = simple<arcus_context_s>(ctx, arcus::kContextHandle, "ctx", [&](arcus_context_s*) {
     require_pointer(out, "out");
     *out = nullptr;
     require_pointer(path, "path");
+    if (mesh_count == 0) return;
+    require(mesh_count <= kMaxGivenMeshes, "mesh_count " + std::to_string(mesh_count) + " is over " +
+                                               std::to_string(kMaxGivenMeshes));
+    require_pointer(mesh_names, "mesh_names");
+    require_pointer(meshes, "meshes");
+    for (size_t i = 0; i < mesh_count; ++i) {
+      const std::string at = "[" + std::to_string(i) + "]";
+      require_pointer(mesh_names[i], ("mesh_names" + at).c_str());
+      const size_t length = strnlen(mesh_names[i], kMaxMeshName + 1);
+      require(length > 0 && length <= kMaxMeshName, "mesh_names" + at + " must have 1 to " +
+                                                         std::to_string(kMaxMeshName) + " bytes");
+      for (size_t j = 0; j < i; ++j)
+        require(std::strcmp(mesh_names[i], mesh_names[j]) != 0,
+                "mesh_names" + at + " = " + arcus::json::quoted(mesh_names[i]) + " is also mesh_names[" +
+                    std::to_string(j) + "]");
+      auto* mesh = object_of<arcus_mesh_s>(ctx, meshes[i], arcus::geometry::kMeshHandle,
+                                                  ("meshes" + at).c_str());
+      mesh->retain();
+      held_meshes.emplace_back(mesh);
+      given.add(mesh_names[i], &mesh->mesh);
+    }
+  });
+  if (status != ARCUS_SUCCESS) return status;
+  arcus_scene_s* scene = nullptr;
+  std::exception_ptr failed;
+  try {
+    scene = arcus::scene::loader_for(path)(ctx, path, given, [&](const std::function<void()>& create) {
+      arcus::ContextLock lock(ctx);
+      create();
+    });
+  } catch (...) {
+    failed = std::current_exception();
+  }
+  // A given mesh the scene did not use is an error too (released unlocked, as
+  // arcus_scene_release does).
+  const long unused = failed ? -1 : given.first_unused();
+  if (unused >= 0) {
+    arcus::release_handle(scene);
+    failed = std::make_exception_ptr(
+        arcus::Error(ARCUS_ERROR_INVALID_ARGUMENT, std::string(path) + ": uses no mesh named " +
+                                                       arcus::json::quoted(given.name(unused)) + " (mesh_names[" +
+                                                       std::to_string(unused) + "])"));
+  }
+  return simple<arcus_context_s>(ctx, arcus::kContextHandle, "ctx", [&](arcus_context_s*) {
     if (failed) std::rethrow_exception(failed);
     *out = scene;
   });

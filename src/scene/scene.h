@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "arcus/arcus_scene.h"
 #include "core/handle.h"
@@ -20,13 +21,41 @@ struct arcus_scene_s : arcus::Handle {
   std::string name, description, document;
 };
 
+namespace arcus::geometry {
+struct Mesh;
+}  // namespace arcus::geometry
+
 namespace arcus::scene {
 
-// Reads the scene file at `path` and creates its objects on ctx.  Runs without the
-// context's lock (file reading may be slow) except inside `locked`, which a loader
-// calls for the part that creates library objects.
+// The meshes a caller handed arcus_scene_load_with_meshes, by the names its scene file
+// gives them ({"type": "mesh", "mesh": "bunny"} in a render scene).  A loader looks up
+// each name its file uses; the call then refuses any mesh no object used (a misspelt
+// name, or a scene whose engine takes no meshes), so none is silently ignored.
+class GivenMeshes {
+ public:
+  void add(std::string name, const geometry::Mesh* mesh) { given_.push_back({std::move(name), mesh, false}); }
+  // The mesh called `name`; else ARCUS_ERROR_INVALID_ARGUMENT "<where>: no mesh named ...".
+  const geometry::Mesh& get(const std::string& name, const std::string& where) const;
+  // The index of the first mesh no lookup asked for, or -1.
+  long first_unused() const;
+  const std::string& name(size_t i) const { return given_[i].name; }
+
+ private:
+  struct Given {
+    std::string name;
+    const geometry::Mesh* mesh;
+    mutable bool used;
+  };
+  std::vector<Given> given_;
+};
+
+// Reads the scene file at `path` and creates its objects on ctx, taking any mesh it
+// names from `meshes`.  Runs without the context's lock (file reading may be slow)
+// except inside `locked`, which a loader calls for the part that creates library
+// objects; the given meshes are held alive meanwhile and never change.
 using Locked = std::function<void(const std::function<void()>&)>;
-using Loader = std::function<arcus_scene_s*(arcus_context_t* ctx, const std::string& path, const Locked& locked)>;
+using Loader = std::function<arcus_scene_s*(arcus_context_t* ctx, const std::string& path,
+                                            const GivenMeshes& meshes, const Locked& locked)>;
 
 // `marker`: the top-level key of the engine's scene files ("camera"), or null for the
 // engine that reads every other scene (the curved one).  When a document has the

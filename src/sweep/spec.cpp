@@ -95,7 +95,8 @@ void check_spec(const Node& root) {
   if (auto v = root.find("description")) v->string();
 }
 
-arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::Locked& locked) {
+arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::GivenMeshes&,
+                    const scene::Locked& locked) {
   return scene::document_scene(ctx, path, "sweep", check_spec, locked);
 }
 
