@@ -91,7 +91,8 @@ class Render : public ArcusTest {
 };
 
 // Möller–Trumbore on the host: the independent straight-ray reference.
-bool ray_triangle(const double* o, const double* d, const double* a, const double* b, const double* c, double* t) {
+inline bool ray_triangle(const double* o, const double* d, const double* a, const double* b, const double* c,
+                         double* t) {
   const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
   const double p[3] = {d[1] * e2[2] - d[2] * e2[1], d[2] * e2[0] - d[0] * e2[2], d[0] * e2[1] - d[1] * e2[0]};
   const double det = e1[0] * p[0] + e1[1] * p[1] + e1[2] * p[2];
@@ -106,8 +107,47 @@ bool ray_triangle(const double* o, const double* d, const double* a, const doubl
   return *t > 0;
 }
 
+// A medium of index 1, and a 48×32 camera at the origin looking down −z (30° high).
+const std::string kConstantMedium = R"({"type": "constant", "n": 1.0})";
+const std::string kPinholeCamera = R"({"position": [0, 0, 0], "look_at": [0, 0, -1], "up": [0, 1, 0],
+                                       "vfov_deg": 30, "width": 48, "height": 32})";
+
+// Curved optics must reduce to straight optics: in a constant medium every pixel of an
+// image taken with kPinholeCamera hits exactly the triangle (of `tris`, 9 coordinates
+// each, placed) that a straight pinhole ray through its centre hits, found here by brute
+// force, at the same distance.
+inline void expect_straight_pinhole_image(const Rendered& img, const std::vector<double>& tris) {
+  const double tan_half = std::tan(15.0 * M_PI / 180.0), aspect = 48.0 / 32.0;
+  ASSERT_EQ(img.width, 48u);
+  ASSERT_EQ(img.height, 32u);
+  int silhouette = 0;
+  for (uint32_t j = 0; j < img.height; ++j)
+    for (uint32_t i = 0; i < img.width; ++i) {
+      const size_t p = size_t(j) * img.width + i;
+      const double o[3] = {0, 0, 0};
+      const double d[3] = {(2.0 * (i + 0.5) / img.width - 1) * tan_half * aspect,
+                           (1 - 2.0 * (j + 0.5) / img.height) * tan_half, -1};
+      double best = INFINITY, t;
+      int tri = -1;
+      for (size_t k = 0; 9 * k < tris.size(); ++k)
+        if (ray_triangle(o, d, &tris[9 * k], &tris[9 * k + 3], &tris[9 * k + 6], &t) && t < best) {
+          best = t;
+          tri = static_cast<int>(k);
+        }
+      ASSERT_EQ(img.objects[p] >= 0, tri >= 0) << "pixel " << i << "," << j;
+      if (tri < 0) continue;
+      ++silhouette;
+      EXPECT_EQ(img.primitives[p], tri) << "pixel " << i << "," << j;
+      // The hit on the unit-speed straight path lies at arc length best·|d|; the kernel's
+      // crossing ends within its tolerance (atol 1e-6 m + rtol·5 m).
+      const double len = best * std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      EXPECT_NEAR(img.distances[p], len, 1e-6) << "pixel " << i << "," << j;
+    }
+  EXPECT_GT(silhouette, 100);  // the object covers a good part of the image
+}
+
 // The icosphere's triangles, read from its OBJ by this test (not by the library).
-std::vector<double> read_obj_triangles(const std::string& path, double scale, const double* at) {
+inline std::vector<double> read_obj_triangles(const std::string& path, double scale, const double* at) {
   std::ifstream in(path);
   std::vector<double> v, tris;
   std::string line;

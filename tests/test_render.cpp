@@ -7,45 +7,17 @@ using namespace arcus_test;
 
 namespace {
 
-// Curved optics must reduce to straight optics: in a constant medium every pixel hits
-// exactly the triangle a straight pinhole ray through its centre hits (found here by
-// brute force over the mesh), at the same distance.
+// Curved optics must reduce to straight optics (render_fixture.h:
+// expect_straight_pinhole_image).
 TEST_F(Render, AConstantMediumRendersTheStraightPinholeImage) {
   const double at[3] = {0, 0, -5};
-  const std::string camera =
-      R"({"position": [0, 0, 0], "look_at": [0, 0, -1], "up": [0, 1, 0], "vfov_deg": 30, "width": 48, "height": 32})";
   const std::string objects = R"([{"type": "mesh", "file": ")" + mesh("icosphere.obj") +
                               R"(", "material": "m", "translate": [0, 0, -5], "scale": 1.5}])";
-  arcus_scene_t* scene = load(scene_text(R"({"type": "constant", "n": 1.0})", camera, objects), "straight");
+  arcus_scene_t* scene = load(scene_text(kConstantMedium, kPinholeCamera, objects), "straight");
   ASSERT_NE(scene, nullptr);
   const Rendered img = render(scene, 0);
   arcus_scene_release(scene);
-  const std::vector<double> tris = read_obj_triangles(mesh("icosphere.obj"), 1.5, at);
-  const double tan_half = std::tan(15.0 * M_PI / 180.0), aspect = 48.0 / 32.0;
-  int silhouette = 0;
-  for (uint32_t j = 0; j < img.height; ++j)
-    for (uint32_t i = 0; i < img.width; ++i) {
-      const size_t p = size_t(j) * img.width + i;
-      const double o[3] = {0, 0, 0};
-      const double d[3] = {(2.0 * (i + 0.5) / img.width - 1) * tan_half * aspect,
-                           (1 - 2.0 * (j + 0.5) / img.height) * tan_half, -1};
-      double best = INFINITY, t;
-      int tri = -1;
-      for (size_t k = 0; 9 * k < tris.size(); ++k)
-        if (ray_triangle(o, d, &tris[9 * k], &tris[9 * k + 3], &tris[9 * k + 6], &t) && t < best) {
-          best = t;
-          tri = static_cast<int>(k);
-        }
-      ASSERT_EQ(img.objects[p] >= 0, tri >= 0) << "pixel " << i << "," << j;
-      if (tri < 0) continue;
-      ++silhouette;
-      EXPECT_EQ(img.primitives[p], tri) << "pixel " << i << "," << j;
-      // The hit on the unit-speed straight path lies at arc length best·|d|; the kernel's
-      // crossing ends within its tolerance (atol 1e-6 m + rtol·5 m).
-      const double len = best * std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      EXPECT_NEAR(img.distances[p], len, 1e-6) << "pixel " << i << "," << j;
-    }
-  EXPECT_GT(silhouette, 100);  // the sphere covers a good part of the image
+  expect_straight_pinhole_image(img, read_obj_triangles(mesh("icosphere.obj"), 1.5, at));
 }
 
 // The inferior mirage at 120×60: the scene the technique tests render.
