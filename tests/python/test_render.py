@@ -1,4 +1,5 @@
 """Rendering from Python: arcus.render returns the image and figures as numpy."""
+import json
 import pathlib
 
 import numpy as np
@@ -60,10 +61,71 @@ def test_every_technique_gives_the_straight_image(tmp_path):
 
 
 def test_a_scene_built_in_python_renders_like_its_file(tmp_path):
-    import json
     path = small_scene(tmp_path)
     from_file = arcus.render(path)
     from_dict = arcus.render(json.loads(path.read_text()), base_dir=tmp_path)
     assert (from_dict.objects == from_file.objects).all()
     assert np.array_equal(from_dict.image, from_file.image)
     assert not list(tmp_path.glob("tmp*.json"))  # the temporary scene file is gone
+
+
+# A cube of half-side 1 about the origin, two triangles a face wound outward (every
+# coordinate exact in single precision, as file readers hand them over).
+CUBE_VERTICES = np.array([[x, y, z] for z in (-1.0, 1.0) for y in (-1.0, 1.0) for x in (-1.0, 1.0)])
+CUBE_TRIANGLES = np.array([[0, 2, 3], [0, 3, 1], [4, 5, 7], [4, 7, 6], [0, 1, 5], [0, 5, 4],
+                           [2, 6, 7], [2, 7, 3], [0, 4, 6], [0, 6, 2], [1, 3, 7], [1, 7, 5]])
+
+
+def cube_scene(source, translate=(0, 0, -5)):
+    return {"name": "cube", "medium": {"type": "constant", "n": 1.0},
+            "integrator": {"method": "dp45", "rtol": 1e-12, "atol": 1e-6, "length": 100},
+            "camera": {"position": [0, 0, 0], "look_at": [0, 0, -1], "vfov_deg": 40, "width": 32, "height": 24},
+            "materials": {"m": {"diffuse": [0.5, 0.5, 0.5], "emission": [0.1, 0.2, 0.3]}},
+            "objects": [dict(source, type="mesh", material="m", translate=list(translate))],
+            "sky": {"type": "constant", "color": [0, 0, 1]}}
+
+
+def test_a_mesh_from_memory_is_placed_by_the_scene(tmp_path):
+    # A straight ray (n = 1) through pixel (16, 12)'s centre, d = (sx, sy, −1), meets the
+    # cube's near face z = t_z + 1 at distance (−t_z − 1)·|d| (closed form); the
+    # kernel's crossing ends within its tolerance (atol 1e-6 m + rtol·distance).
+    half = np.tan(np.radians(20))
+    d = np.array([(2 * 16.5 / 32 - 1) * half * 32 / 24, (1 - 2 * 12.5 / 24) * half, -1])
+    for tz in (-5, -7):
+        result = arcus.render(cube_scene({"mesh": "cube"}, (0, 0, tz)), base_dir=tmp_path,
+                              meshes={"cube": (CUBE_VERTICES, CUBE_TRIANGLES)})
+        assert result.objects[12, 16] == 0 and result.objects[0, 0] == -1
+        expected = (-tz - 1) * np.linalg.norm(d)
+        assert abs(result.distances[12, 16] - expected) < 1e-5, (tz, result.distances[12, 16], expected)
+
+
+def test_determinism_a_mesh_from_memory_renders_bit_for_bit_as_its_file(tmp_path):
+    off = tmp_path / "cube.off"
+    off.write_text("OFF\n8 12 0\n" + "".join("%.17g %.17g %.17g\n" % tuple(v) for v in CUBE_VERTICES)
+                   + "".join("3 %d %d %d\n" % tuple(t) for t in CUBE_TRIANGLES))
+    from_file = arcus.render(cube_scene({"file": str(off)}), base_dir=tmp_path)
+    scene_path = tmp_path / "memory.json"
+    scene_path.write_text(json.dumps(cube_scene({"mesh": "cube"})))
+    with arcus.Context() as ctx:
+        for cube in ((CUBE_VERTICES, CUBE_TRIANGLES), (CUBE_VERTICES.tolist(), CUBE_TRIANGLES.astype(np.uint32))):
+            from_memory = ctx.render(scene_path, meshes={"cube": cube})
+            assert np.array_equal(from_memory.image, from_file.image)
+            assert np.array_equal(from_memory.distances, from_file.distances)
+            assert np.array_equal(from_memory.primitives, from_file.primitives)
+
+
+def test_meshes_from_memory_that_do_not_fit_the_scene_are_refused(tmp_path):
+    cube = (CUBE_VERTICES, CUBE_TRIANGLES)
+    with pytest.raises(arcus.ArgumentError, match=r"\$\.objects\[0\]\.mesh: no mesh named \"cube\" was given"):
+        arcus.render(cube_scene({"mesh": "cube"}), base_dir=tmp_path, meshes={"box": cube})
+    with pytest.raises(arcus.ArgumentError, match=r"uses no mesh named \"spare\""):
+        arcus.render(cube_scene({"mesh": "cube"}), base_dir=tmp_path, meshes={"cube": cube, "spare": cube})
+    with pytest.raises(arcus.ArgumentError, match=r"meshes\['cube'\] vertices must have shape \(N, 3\)"):
+        arcus.render(cube_scene({"mesh": "cube"}), base_dir=tmp_path, meshes={"cube": (CUBE_VERTICES[:, :2],
+                                                                                        CUBE_TRIANGLES)})
+    with pytest.raises(arcus.ArgumentError, match=r"indices\[\d+\] = 8 is not below vertex_count 8"):
+        arcus.render(cube_scene({"mesh": "cube"}), base_dir=tmp_path, meshes={"cube": (CUBE_VERTICES,
+                                                                                        CUBE_TRIANGLES + 1)})
+    for bad in ([cube], {"cube": CUBE_VERTICES}, {"": cube}, {1: cube}):
+        with pytest.raises(arcus.ArgumentError, match="meshes"):
+            arcus.render(cube_scene({"mesh": "cube"}), base_dir=tmp_path, meshes=bad)

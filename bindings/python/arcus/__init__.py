@@ -96,12 +96,13 @@ __all__ = [
 ]
 
 
-def render(scene, techniques=None, frames=1, exr=None, png=None, device=DEVICE_DEFAULT, base_dir="."):
+def render(scene, techniques=None, frames=1, exr=None, png=None, device=DEVICE_DEFAULT, base_dir=".", meshes=None):
     """Renders a render scene (a file, or a dict built in Python) on a new context of
-    ``device``: see :meth:`Context.render`.  Returns a :class:`RenderResult` (image as
-    numpy, hits, figures)."""
+    ``device``, with any meshes from memory its objects name: see :meth:`Context.render`.
+    Returns a :class:`RenderResult` (image as numpy, hits, figures)."""
     with Context(device) as ctx:
-        return ctx.render(scene, techniques=techniques, frames=frames, exr=exr, png=png, base_dir=base_dir)
+        return ctx.render(scene, techniques=techniques, frames=frames, exr=exr, png=png, base_dir=base_dir,
+                          meshes=meshes)
 
 
 def bundled_scene(name):

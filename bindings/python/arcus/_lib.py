@@ -100,6 +100,8 @@ _PROTOTYPES = {
     "arcus_job_get_features": (_status, [_handle, POINTER(c_uint64)]),
     "arcus_job_get_stats": (_status, [_handle, POINTER(JobStatsStruct)]),
     "arcus_scene_load": (_status, [_handle, c_char_p, _out_handle]),
+    "arcus_scene_load_with_meshes": (_status, [_handle, c_char_p, c_size_t, POINTER(c_char_p), POINTER(c_void_p),
+                                               _out_handle]),
     "arcus_scene_retain": (_status, [_handle]),
     "arcus_scene_release": (_status, [_handle]),
     "arcus_scene_get_name": (_status, [_handle, POINTER(c_char_p)]),

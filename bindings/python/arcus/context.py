@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _constants as C
-from . import _lib
+from . import _lib, _meshes
 from ._args import to_int, to_path, to_per_ray, to_points
 from ._errors import DEVICE_NOT_FOUND, ArgumentError, Error, error_for
 from ._advance import AdvanceResult, _advance_params, _check_progress  # noqa: F401  (re-exported)
@@ -466,7 +466,7 @@ class Context:
         return Scene(self, _Handle(out, lib.arcus_scene_release))
 
     def render(self, path, techniques=None, frames=1, exr=None, png=None, base_dir=".", width=None, height=None,
-               progress=None):
+               progress=None, meshes=None):
         """Renders a render scene: ``path`` names a scene file with a "camera", or is a
         dict of the same schema built in Python (its relative file names are read
         against ``base_dir``, the current directory by default).
@@ -475,7 +475,12 @@ class Context:
         "undersample", "path_cache"; ``frames``: frames rendered with the camera at rest
         (the result is the last one's).  ``exr``/``png``: optional files to write.
         ``width``/``height`` override the camera's image size (the field of view stays);
-        ``progress(fraction)`` sees each frame's progress.  Returns a :class:`RenderResult`.  Raises arcus.Error with the library's message
+        ``progress(fraction)`` sees each frame's progress.  ``meshes``: geometry from
+        memory for the scene's objects to name, ``{name: (vertices, triangles)}`` ((N, 3)
+        reals and (M, 3) vertex indices, e.g. ``(mesh.vertices, mesh.faces)``): an
+        object ``{"type": "mesh", "mesh": name}`` takes it instead of a "file"
+        (``arcus_scene_load_with_meshes``); a name the scene uses that is not given, or a
+        given mesh it does not use, raises ArgumentError.  Returns a :class:`RenderResult`.  Raises arcus.Error with the library's message
         (a scene error names the file and the key).
         """
         frames = to_int(frames, "frames", 1, 100000)
@@ -486,7 +491,7 @@ class Context:
                 json.dump(path, f)
             try:
                 return self.render(f.name, techniques, frames, exr, png, width=width, height=height,
-                                   progress=progress)
+                                   progress=progress, meshes=meshes)
             finally:
                 os.unlink(f.name)
         encoded = to_path(path, "path")
@@ -504,10 +509,11 @@ class Context:
         size = (None if width is None else to_int(width, "width", 1, 1 << 16),
                 None if height is None else to_int(height, "height", 1, 1 << 16))
         _check_progress(progress)
+        given = _meshes.named(meshes)
         with self._running_job():
-            return self._render_file(encoded, bits, frames, exr, png, size, progress)
+            return self._render_file(encoded, bits, frames, exr, png, size, progress, given)
 
-    def _render_file(self, encoded, bits, frames, exr, png, size, progress):
+    def _render_file(self, encoded, bits, frames, exr, png, size, progress, given):
         state = self._state
 
         # close() from another thread cancels the frame (a frame has no partial result).
@@ -517,7 +523,7 @@ class Context:
             return 1 if state.closing else 0
         cancel_on_close = _lib.PROGRESS_CALLBACK(on_progress)
         scene = c_void_p()
-        self._check(lib.arcus_scene_load(self._handle, encoded, byref(scene)))
+        _meshes.load_scene(self, encoded, given, byref(scene))
         scene_ref = _Handle(scene, lib.arcus_scene_release)
         renderer = c_void_p()
         try:

@@ -38,7 +38,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _lib
+from . import _lib, _meshes
 from ._args import to_bool, to_choice, to_float, to_int, to_path, to_real_array
 from ._errors import ArgumentError
 from ._lib import lib
@@ -210,24 +210,11 @@ class Mesh(Particle):
         triangle, a closed mesh) by the library when the particle is first used, whose
         messages name the C API's flat arrays ("indices[7] = 12 is not below
         vertex_count 10": row 7 // 3, column 7 % 3 of ``triangles``)."""
-        v = to_real_array(vertices, "vertices")
-        if v.ndim != 2 or v.shape[1] != 3:
-            raise ArgumentError("vertices must have shape (N, 3), got %s" % (v.shape,))
-        t = np.asarray(triangles)
-        if t.dtype.kind not in "iu" or t.ndim != 2 or t.shape[1] != 3:
-            raise ArgumentError("triangles must be an (M, 3) array of integers (vertex indices), got %s of %s"
-                                % (t.shape, t.dtype))
-        outside = (t < 0) | (t > 0xFFFFFFFF)
-        if outside.any():
-            row, col = np.argwhere(outside)[0]
-            raise ArgumentError("triangles[%d, %d] = %d is not a vertex index (0 to 2**32 - 1)"
-                                % (row, col, t[row, col]))
+        v, t = _meshes.mesh_arrays(vertices, triangles)
         mesh = cls.__new__(cls)
         Particle.__init__(mesh)
         mesh._path = mesh.path = None
-        mesh.vertices = v.copy()
-        mesh.triangles = np.array(t, dtype=np.uint32, order="C")
-        mesh.vertices.flags.writeable = mesh.triangles.flags.writeable = False
+        mesh.vertices, mesh.triangles = v, t
         mesh.scale = to_float(scale, "scale")
         mesh.smooth = to_bool(smooth, "smooth")
         return mesh
@@ -236,8 +223,7 @@ class Mesh(Particle):
         if self.vertices is None:
             return lib.arcus_particle_create_mesh(ctx_handle, self._path, self.scale, int(self.smooth), out)
         mesh = c_void_p()
-        status = lib.arcus_mesh_create(ctx_handle, len(self.vertices), _lib.ptr(self.vertices), len(self.triangles),
-                                       _lib.ptr(self.triangles, c_uint32), byref(mesh))
+        status = _meshes.create(ctx_handle, self.vertices, self.triangles, byref(mesh))
         if status != 0:
             return status
         try:  # the particle keeps its own copy of the mesh
