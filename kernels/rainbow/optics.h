@@ -1,8 +1,8 @@
 /* One ray through one particle with its polarisation and phase (thesis §4.4.2): the
  * particle's surfaces, the Fresnel interface in amplitudes, and the walk of the ray
  * through p = 0..P.  Scalar code that the host includes too (tests, and the bisection
- * that finds the projected edge): prepend common/real.h, bvh/bvh_desc.h,
- * bvh/traverse.h and rainbow/rainbow_desc.h.
+ * that finds the projected edge): prepend common/real.h, common/fresnel.h,
+ * bvh/bvh_desc.h, bvh/traverse.h and rainbow/rainbow_desc.h.
  *
  * Conventions.  Fields are complex 3-vectors, a wave e^{i(k·x − ωt)}: the optical path
  * l adds the phase +2πl/λ, and an evanescent transmitted wave under total internal
@@ -18,6 +18,7 @@
 
 #ifndef __OPENCL_C_VERSION__
 #include "bvh/traverse.h"
+#include "common/fresnel.h"
 #include "rainbow/rainbow_desc.h"
 #endif
 
@@ -82,21 +83,20 @@ typedef struct rb_fresnel {
 /* cos_i = cos θ_i > 0 on the incident side; eta = n1 / n2. */
 ARCUS_INLINE rb_fresnel rb_fresnel_coefficients(REAL cos_i, REAL n1, REAL n2) {
   rb_fresnel f;
-  const REAL eta = n1 / n2;
-  const REAL sin2_t = eta * eta * fmax(RC(0), RC(1) - cos_i * cos_i);
-  if (sin2_t <= RC(1)) {
-    const REAL cos_t = sqrt(RC(1) - sin2_t);
+  const arcus_fresnel_real a = arcus_fresnel_amplitudes(cos_i, n1, n2); /* common/fresnel.h */
+  if (!a.total) {
+    const REAL cos_t = a.cos_t;
     const REAL ds = n1 * cos_i + n2 * cos_t, dp = n2 * cos_i + n1 * cos_t;
     const REAL power = sqrt(n2 * cos_t / (n1 * cos_i)); /* 0 at grazing incidence */
-    f.rs = rb_c((n1 * cos_i - n2 * cos_t) / ds, 0);
-    f.rp = rb_c((n2 * cos_i - n1 * cos_t) / dp, 0);
+    f.rs = rb_c(a.rs, 0);
+    f.rp = rb_c(a.rp, 0);
     f.ts = rb_c(RC(2) * n1 * cos_i / ds * power, 0);
     f.tp = rb_c(RC(2) * n1 * cos_i / dp * power, 0);
     f.cos_t = cos_t;
     f.total = 0;
   } else {
     /* cos θ_t = i·c: the same formulas continued, each |r| = 1 with a phase (eq. 2.17) */
-    const REAL c = sqrt(sin2_t - RC(1));
+    const REAL c = sqrt(a.sin2_t - RC(1));
     f.rs = rb_div(rb_c(n1 * cos_i, -n2 * c), rb_c(n1 * cos_i, n2 * c));
     f.rp = rb_div(rb_c(n2 * cos_i, -n1 * c), rb_c(n2 * cos_i, n1 * c));
     f.ts = rb_c(0, 0);

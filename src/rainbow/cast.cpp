@@ -45,8 +45,8 @@ const FeatureTableEntry kRegistered(&kTable);
 ARCUS_KERNEL_ARGS(CastArg, "arcus_rainbow_cast", ARCUS_RAINBOW_CAST_ARGS);
 
 const KernelSource kCast{"rainbow/cast",
-                         {"common/real.h", "bvh/bvh_desc.h", "bvh/traverse.h", "rainbow/rainbow_desc.h",
-                          "rainbow/optics.h", "rainbow/cast.cl"},
+                         {"common/real.h", "common/fresnel.h", "bvh/bvh_desc.h", "bvh/traverse.h",
+                          "rainbow/rainbow_desc.h", "rainbow/optics.h", "rainbow/cast.cl"},
                          ""};
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {

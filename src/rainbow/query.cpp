@@ -22,8 +22,8 @@ constexpr double kPi = 3.14159265358979323846;
 ARCUS_KERNEL_ARGS(QueryArg, "arcus_rainbow_query", ARCUS_RAINBOW_QUERY_ARGS);
 
 const KernelSource kQuery{"rainbow/query",
-                          {"common/real.h", "bvh/bvh_desc.h", "bvh/traverse.h", "rainbow/rainbow_desc.h",
-                           "rainbow/optics.h", "rainbow/airy.h", "rainbow/query.cl"},
+                          {"common/real.h", "common/fresnel.h", "bvh/bvh_desc.h", "bvh/traverse.h",
+                           "rainbow/rainbow_desc.h", "rainbow/optics.h", "rainbow/airy.h", "rainbow/query.cl"},
                           ""};
 
 }  // namespace
