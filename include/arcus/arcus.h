@@ -8,6 +8,7 @@
  *   arcus_render.h  rendering through curved light
  *   arcus_ocean.h   underwater light: the bio-optical model, spectral photon tracing
  *   arcus_rainbow.h rainbows and halos: phase functions of drops and crystals, Mie, skies
+ *   arcus_translucency.h  translucent materials: the dipole model, measured materials
  *   arcus_image.h   reading input images (sky images)
  */
 #ifndef ARCUS_ARCUS_H
@@ -19,6 +20,7 @@
 #include "arcus_render.h"
 #include "arcus_ocean.h"
 #include "arcus_rainbow.h"
+#include "arcus_translucency.h"
 #include "arcus_image.h"
 
 #endif /* ARCUS_ARCUS_H */

@@ -1,0 +1,174 @@
+// The translucency engine's C API (include/arcus/arcus_translucency.h): host calls on
+// the dipole model, with no context (errors go to the thread's last error).
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+
+#include "core/call.h"
+#include "core/format.h"
+#include "translucency/dipole.h"
+#include "translucency/materials.h"
+
+using namespace arcus;
+using namespace arcus::api;
+using namespace arcus::translucency;
+
+namespace {
+
+// Channel c of a caller's dipole, checked.
+Channel channel_of(const arcus_dipole& d, int c) {
+  const Channel ch{d.sigma_a[c], d.sigma_s_prime[c], d.eta};
+  check_channel(ch, "dipole->", c);
+  return ch;
+}
+
+void check_dipole(const arcus_dipole* d) {
+  require_pointer(d, "dipole");
+  check_eta(d->eta, "dipole->eta");
+  for (int c = 0; c < 3; ++c) channel_of(*d, c);
+}
+
+// The caller's count of items of `per_item` doubles, refused when the arrays could not
+// hold them (their size would overflow).
+void check_count(size_t count, size_t per_item, const char* name) {
+  require(count <= std::numeric_limits<size_t>::max() / (per_item * sizeof(double)),
+          std::string(name) + " " + std::to_string(count) + " is beyond any array");
+}
+
+}  // namespace
+
+extern "C" {
+
+arcus_status arcus_translucency_dipole_get_terms(const arcus_dipole* dipole, arcus_dipole_terms* terms) {
+  return without_context([&] {
+    require_pointer(terms, "terms");
+    check_dipole(dipole);
+    arcus_dipole_terms out{};
+    for (int c = 0; c < 3; ++c) {
+      const Terms t = translucency::terms(channel_of(*dipole, c));
+      out.albedo[c] = t.albedo;
+      out.sigma_t_prime[c] = t.sigma_t_prime;
+      out.sigma_tr[c] = t.sigma_tr;
+      out.diffuse_length[c] = t.sigma_tr > 0 ? 1 / t.sigma_tr : INFINITY;
+      out.z_r[c] = t.z_r;
+      out.z_v[c] = t.z_v;
+      out.total_reflectance[c] = total_reflectance(t.albedo, dipole->eta);
+      out.diffusive[c] = t.albedo >= 0.5;
+    }
+    out.f_dr = diffuse_fresnel_reflectance(dipole->eta);
+    out.a = boundary_mismatch(dipole->eta);
+    out.exit_transmittance = exit_transmittance(dipole->eta);
+    *terms = out;
+  });
+}
+
+arcus_status arcus_translucency_dipole_profile(const arcus_dipole* dipole, double scale, int32_t scaling,
+                                               size_t count, const double* r_mm, double* rd) {
+  return without_context([&] {
+    check_dipole(dipole);
+    require(std::isfinite(scale) && scale > 0, "scale = " + number(scale) + " is not a finite stretch > 0");
+    require(scaling == ARCUS_PROFILE_SCALE_ENERGY || scaling == ARCUS_PROFILE_SCALE_THESIS,
+            "scaling = " + std::to_string(scaling) +
+                " is not ARCUS_PROFILE_SCALE_ENERGY (0) or ARCUS_PROFILE_SCALE_THESIS (1)");
+    check_count(count, 3, "count");
+    if (count == 0) return;
+    require_pointer(r_mm, "r_mm");
+    require_pointer(rd, "rd");
+    for (size_t i = 0; i < count; ++i)
+      require(std::isfinite(r_mm[i]) && r_mm[i] >= 0,
+              "r_mm[" + std::to_string(i) + "] = " + number(r_mm[i]) + " is not a finite distance >= 0");
+    // Stretching the profile by s: R_d(r/s), and /s² to keep ∫2πr R_d dr (§5.2).
+    const double factor = scaling == ARCUS_PROFILE_SCALE_ENERGY ? 1 / (scale * scale) : 1;
+    for (int c = 0; c < 3; ++c) {
+      const Channel ch = channel_of(*dipole, c);
+      for (size_t i = 0; i < count; ++i) rd[3 * i + c] = factor * diffuse_reflectance(ch, r_mm[i] / scale);
+    }
+  });
+}
+
+arcus_status arcus_translucency_dipole_from_material(const char* name, arcus_dipole* out) {
+  return without_context([&] {
+    require_pointer(name, "name");
+    require_pointer(out, "out");
+    std::string known;
+    for (size_t m = 0; m < kMaterialCount; ++m) {
+      const Material& mat = kMaterials[m];
+      if (std::strcmp(name, mat.name) == 0) {
+        for (int c = 0; c < 3; ++c) {
+          out->sigma_a[c] = mat.sigma_a[c];
+          out->sigma_s_prime[c] = mat.sigma_s_prime[c];
+        }
+        out->eta = mat.eta;
+        return;
+      }
+      known += std::string(known.empty() ? "" : ", ") + mat.name;
+    }
+    fail(ARCUS_ERROR_INVALID_ARGUMENT, "name: no measured material \"" + std::string(name).substr(0, 64) +
+                                           "\" (known: " + known + ")");
+  });
+}
+
+arcus_status arcus_translucency_material_name(uint32_t index, const char** name) {
+  return without_context([&] {
+    require_pointer(name, "name");
+    require(index < kMaterialCount, "index " + std::to_string(index) + " is not below the " +
+                                        std::to_string(kMaterialCount) + " measured materials");
+    *name = kMaterials[index].name;
+  });
+}
+
+arcus_status arcus_translucency_dipole_from_reflectance(const double total_reflectance[3],
+                                                        const double diffuse_length[3], double eta,
+                                                        arcus_dipole* out) {
+  return without_context([&] {
+    require_pointer(total_reflectance, "total_reflectance");
+    require_pointer(diffuse_length, "diffuse_length");
+    require_pointer(out, "out");
+    check_eta(eta, "eta");
+    arcus_dipole d{};
+    d.eta = eta;
+    for (int c = 0; c < 3; ++c) {
+      const std::string at = "[" + std::to_string(c) + "]";
+      const double total = total_reflectance[c], length = diffuse_length[c];
+      require(total > 0 && total < 1,
+              "total_reflectance" + at + " = " + number(total) + " is not between 0 and 1 (exclusive)");
+      require(std::isfinite(length) && length > 0,
+              "diffuse_length" + at + " = " + number(length) + " is not a finite length > 0 (mm)");
+      // σ_tr = σ_t′·sqrt(3(1 − α′)), so σ_t′ follows from ℓ_d = 1/σ_tr once α′ is known.
+      const double albedo = albedo_for_reflectance(total, eta);
+      const double sigma_t_prime = 1 / (length * std::sqrt(3 * (1 - albedo)));
+      require(std::isfinite(sigma_t_prime) && albedo > 0,
+              "total_reflectance" + at + " = " + number(total) + " is too close to 0 or 1 for a dipole");
+      d.sigma_s_prime[c] = albedo * sigma_t_prime;
+      d.sigma_a[c] = sigma_t_prime - d.sigma_s_prime[c];
+    }
+    *out = d;
+  });
+}
+
+arcus_status arcus_translucency_henyey_greenstein(double g, size_t count, const double* cos_theta, double* phase) {
+  return without_context([&] {
+    require(g > -1 && g < 1, "g = " + number(g) + " is not between -1 and 1 (exclusive)");
+    check_count(count, 1, "count");
+    if (count == 0) return;
+    require_pointer(cos_theta, "cos_theta");
+    require_pointer(phase, "phase");
+    for (size_t i = 0; i < count; ++i)
+      require(cos_theta[i] >= -1 && cos_theta[i] <= 1,
+              "cos_theta[" + std::to_string(i) + "] = " + number(cos_theta[i]) + " is not in [-1, 1]");
+    for (size_t i = 0; i < count; ++i) phase[i] = henyey_greenstein(g, cos_theta[i]);
+  });
+}
+
+arcus_status arcus_translucency_fresnel_reflectance(double cos_i, double n1, double n2, double* reflectance) {
+  return without_context([&] {
+    require_pointer(reflectance, "reflectance");
+    require(cos_i >= 0 && cos_i <= 1, "cos_i = " + number(cos_i) + " is not in [0, 1]");
+    require(std::isfinite(n1) && n1 > 0, "n1 = " + number(n1) + " is not a finite refractive index > 0");
+    require(std::isfinite(n2) && n2 > 0, "n2 = " + number(n2) + " is not a finite refractive index > 0");
+    *reflectance = fresnel_reflectance(cos_i, n1, n2);
+  });
+}
+
+}  // extern "C"
