@@ -19,6 +19,12 @@
  *                             camera, integrator and techniques: "size WIDTH HEIGHT", then
  *                             one line per pixel, top row first: "R G B" (%.9g: each
  *                             float exactly).
+ *   c_api_dump translucency   Marble (arcus_translucency_dipole_from_material): "terms
+ *                             NAME R G B" for albedo, diffuse_length and
+ *                             total_reflectance; R_d at r = 0, 0.5, 1, 2 and 5 mm
+ *                             ("rd R R G B"); then the dipole of apple's R_total and ℓ_d
+ *                             at η = 1.3 ("inverse sigma_a R G B", "inverse
+ *                             sigma_s_prime R G B").
  *
  * Reals print with %.17g (a double exactly).  Exit status 0 on success, 1 on a library
  * error (the message on stderr), 2 for unknown arguments. */
@@ -33,6 +39,9 @@
 #endif
 #ifndef ARCUS_DUMP_RENDER
 #define ARCUS_DUMP_RENDER 1
+#endif
+#ifndef ARCUS_DUMP_TRANSLUCENCY
+#define ARCUS_DUMP_TRANSLUCENCY 1
 #endif
 
 #include <stdio.h>
@@ -203,7 +212,38 @@ done:
 }
 #endif
 
-#if !ARCUS_DUMP_RAINBOW || !ARCUS_DUMP_OCEAN || !ARCUS_DUMP_RENDER
+#if ARCUS_DUMP_TRANSLUCENCY
+static void print_rgb(const char* what, const char* name, const double* v) {
+  printf("%s %s %.17g %.17g %.17g\n", what, name, v[0], v[1], v[2]);
+}
+
+static int dump_translucency(void) {
+  arcus_dipole marble, apple, inverse;
+  arcus_dipole_terms t, apple_terms;
+  const double r[5] = {0, 0.5, 1, 2, 5};
+  double rd[15];
+  int i;
+  if (arcus_translucency_dipole_from_material("marble", &marble) != ARCUS_SUCCESS ||
+      arcus_translucency_dipole_get_terms(&marble, &t) != ARCUS_SUCCESS ||
+      arcus_translucency_dipole_profile(&marble, 1.0, ARCUS_PROFILE_SCALE_ENERGY, 5, r, rd) != ARCUS_SUCCESS ||
+      arcus_translucency_dipole_from_material("apple", &apple) != ARCUS_SUCCESS ||
+      arcus_translucency_dipole_get_terms(&apple, &apple_terms) != ARCUS_SUCCESS ||
+      arcus_translucency_dipole_from_reflectance(apple_terms.total_reflectance, apple_terms.diffuse_length, 1.3,
+                                                 &inverse) != ARCUS_SUCCESS) {
+    fprintf(stderr, "c_api_dump: %s\n", arcus_last_error());
+    return 1;
+  }
+  print_rgb("terms", "albedo", t.albedo);
+  print_rgb("terms", "diffuse_length", t.diffuse_length);
+  print_rgb("terms", "total_reflectance", t.total_reflectance);
+  for (i = 0; i < 5; ++i) printf("rd %.17g %.17g %.17g %.17g\n", r[i], rd[3 * i], rd[3 * i + 1], rd[3 * i + 2]);
+  print_rgb("inverse", "sigma_a", inverse.sigma_a);
+  print_rgb("inverse", "sigma_s_prime", inverse.sigma_s_prime);
+  return 0;
+}
+#endif
+
+#if !ARCUS_DUMP_RAINBOW || !ARCUS_DUMP_OCEAN || !ARCUS_DUMP_RENDER || !ARCUS_DUMP_TRANSLUCENCY
 /* An engine this build left out (ARCUS_WITH_<ENGINE>=OFF): its dump is absent. */
 static int absent(const char* engine) {
   fprintf(stderr, "c_api_dump: this build has no %s engine\n", engine);
@@ -219,9 +259,12 @@ static int absent(const char* engine) {
 #if !ARCUS_DUMP_RENDER
 #define dump_render(ctx, path) absent("render")
 #endif
+#if !ARCUS_DUMP_TRANSLUCENCY
+#define dump_translucency() absent("translucency")
+#endif
 
 static int usage(void) {
-  fprintf(stderr, "usage: c_api_dump [curved | rainbow | ocean | render SCENE]\n");
+  fprintf(stderr, "usage: c_api_dump [curved | rainbow | ocean | render SCENE | translucency]\n");
   return 2;
 }
 
@@ -233,6 +276,7 @@ int main(int argc, char** argv) {
 
   if (strcmp(engine, "render") == 0 ? argc != 3 : argc > 2) return usage();
   if (strcmp(engine, "rainbow") == 0) return dump_rainbow();
+  if (strcmp(engine, "translucency") == 0) return dump_translucency();
   if (strcmp(engine, "curved") != 0 && strcmp(engine, "ocean") != 0 && strcmp(engine, "render") != 0)
     return usage();
   st = arcus_context_create(ARCUS_DEVICE_DEFAULT, &ctx);

@@ -22,6 +22,7 @@ _MODULE_ENGINES = (
     (("test_ocean",), {"ocean"}),
     (("test_rainbow", "test_sky", "test_halo", "test_sweep", "test_view_rainbow"), {"rainbow"}),
     (("test_render",), {"curved", "render"}),
+    (("test_translucency",), {"translucency"}),
     (("test_advance", "test_fields", "test_paths", "test_progress", "test_determinism", "test_wavelengths",
       "test_devices"), {"curved"}),
 )
@@ -31,7 +32,7 @@ def pytest_collection_modifyitems(config, items):
     for item in items:
         module = item.module.__name__.rpartition(".")[2]
         needed = next((engines for prefixes, engines in _MODULE_ENGINES if module.startswith(prefixes)),
-                      {"curved", "render", "ocean", "rainbow"})
+                      {"curved", "render", "ocean", "rainbow", "translucency"})
         missing = needed - arcus.ENGINES
         if missing:
             item.add_marker(pytest.mark.skip(reason="libarcus built without " + ", ".join(sorted(missing))))

@@ -24,6 +24,7 @@ import arcus
 import arcus.mie
 import arcus.ocean
 import arcus.rainbow
+import arcus.translucency
 
 # The inputs tests/c_api_dump.c hard-codes (its header comment lists them).
 RAINBOW_TEMPERATURE_K = 283.15
@@ -104,6 +105,22 @@ def test_rainbow_same_answer_through_c_and_python():
     np.testing.assert_array_equal(m.parallel, mie_rows[:, 5])
     np.testing.assert_array_equal(m.perpendicular, mie_rows[:, 6])
     assert (m.q_ext, m.q_sca, m.q_back, m.g) == tuple(float(v) for v in efficiencies)
+
+
+def test_translucency_same_answer_through_c_and_python():
+    """Marble's dipole terms and profile, and the inverse from apple's reflectance
+    (arcus_translucency_*), through C and through arcus.translucency: identical doubles
+    (not validation: test_translucency.py and ctest's TranslucencyDipole do that)."""
+    table = run_c("translucency")
+    marble = arcus.translucency.Dipole.from_material("marble")
+    for row in rows_named(table, "terms", "translucency"):
+        np.testing.assert_array_equal(getattr(marble, row[0]), [float(v) for v in row[1:]], err_msg=row[0])
+    rd = np.array([[float(v) for v in row] for row in rows_named(table, "rd", "translucency")])
+    np.testing.assert_array_equal(marble.Rd(rd[:, 0]), rd[:, 1:])
+    apple = arcus.translucency.Dipole.from_material("apple")
+    inverse = arcus.translucency.Dipole.from_reflectance(apple.total_reflectance, apple.diffuse_length, eta=1.3)
+    for row in rows_named(table, "inverse", "translucency"):
+        np.testing.assert_array_equal(getattr(inverse, row[0]), [float(v) for v in row[1:]], err_msg=row[0])
 
 
 def test_ocean_same_answer_through_c_and_python(ctx):

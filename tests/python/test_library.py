@@ -165,6 +165,13 @@ int main(void) {
   printf("arcus_mie_efficiencies %zu\n", sizeof(arcus_mie_efficiencies));
   F(arcus_mie_efficiencies, q_ext) F(arcus_mie_efficiencies, q_sca) F(arcus_mie_efficiencies, q_back)
   F(arcus_mie_efficiencies, g)
+  printf("arcus_dipole %zu\n", sizeof(arcus_dipole));
+  F(arcus_dipole, sigma_a) F(arcus_dipole, sigma_s_prime) F(arcus_dipole, eta)
+  printf("arcus_dipole_terms %zu\n", sizeof(arcus_dipole_terms));
+  F(arcus_dipole_terms, albedo) F(arcus_dipole_terms, sigma_t_prime) F(arcus_dipole_terms, sigma_tr)
+  F(arcus_dipole_terms, diffuse_length) F(arcus_dipole_terms, z_r) F(arcus_dipole_terms, z_v)
+  F(arcus_dipole_terms, total_reflectance) F(arcus_dipole_terms, diffusive) F(arcus_dipole_terms, f_dr)
+  F(arcus_dipole_terms, a) F(arcus_dipole_terms, exit_transmittance)
   return 0;
 }
 """
@@ -179,6 +186,8 @@ STRUCTS = {
     "arcus_rainbow_params": _lib.RainbowParamsStruct,
     "arcus_rainbow_stats": _lib.RainbowStatsStruct,
     "arcus_mie_efficiencies": _lib.MieEfficienciesStruct,
+    "arcus_dipole": _lib.DipoleStruct,
+    "arcus_dipole_terms": _lib.DipoleTermsStruct,
 }
 
 

@@ -19,7 +19,7 @@ The shared library is looked up, in order, at the ARCUS_LIBRARY environment vari
 
 import ctypes as _ctypes
 
-from . import fields, halo, image, mie, ocean, rainbow, sky, sweep
+from . import fields, halo, image, mie, ocean, rainbow, sky, sweep, translucency
 from ._constants import (
     DEVICE_DEFAULT,
     EARTH_RADIUS,
@@ -93,6 +93,7 @@ __all__ = [
     "ocean",
     "rainbow",
     "render",
+    "translucency",
 ]
 
 

@@ -20,6 +20,8 @@ _LIBRARY_NAME = {"darwin": "libarcus.dylib", "win32": "arcus.dll"}.get(sys.platf
 
 from ._structs import (  # noqa: F401  (re-exported: the package uses _lib.<Struct>)
     DeviceInfoStruct,
+    DipoleStruct,
+    DipoleTermsStruct,
     InversionStruct,
     AtmosphereDescStruct,
     AdvanceParamsStruct,
@@ -200,6 +202,14 @@ _PROTOTYPES = {
         _status,
         [c_double, c_double, c_double, c_double, c_uint32, c_size_t, _dvec, _dvec, _dvec, _dvec, _dvec],
     ),
+    "arcus_translucency_dipole_get_terms": (_status, [POINTER(DipoleStruct), POINTER(DipoleTermsStruct)]),
+    "arcus_translucency_dipole_profile": (_status, [POINTER(DipoleStruct), c_double, c_int32, c_size_t, _dvec,
+                                                    _dvec]),
+    "arcus_translucency_dipole_from_material": (_status, [c_char_p, POINTER(DipoleStruct)]),
+    "arcus_translucency_material_name": (_status, [c_uint32, POINTER(c_char_p)]),
+    "arcus_translucency_dipole_from_reflectance": (_status, [_dvec, _dvec, c_double, POINTER(DipoleStruct)]),
+    "arcus_translucency_henyey_greenstein": (_status, [c_double, c_size_t, _dvec, _dvec]),
+    "arcus_translucency_fresnel_reflectance": (_status, [c_double, c_double, c_double, _dvec]),
 }
 
 # ---- finding the library --------------------------------------------------------------
@@ -243,6 +253,7 @@ _ENGINE_CALLS = {
     "render": ("arcus_render", "arcus_job_get_render_", "arcus_job_write_render_"),
     "ocean": ("arcus_ocean_", "arcus_water_", "arcus_bio_optical_", "arcus_job_get_ocean_", "arcus_job_write_ocean_"),
     "rainbow": ("arcus_rainbow_", "arcus_particle_", "arcus_job_get_rainbow_", "arcus_job_write_rainbow_"),
+    "translucency": ("arcus_translucency_",),
 }
 
 
@@ -251,13 +262,9 @@ def _engine_of(name):
 
 
 def _engines_built(dll):
-    """The engines `dll` was built with: those whose feature names it reports."""
-    dll.arcus_features_to_string.restype = c_int
-    dll.arcus_features_to_string.argtypes = [c_uint64, c_char_p, c_size_t]
-    buffer = ctypes.create_string_buffer(256)
-    names = [buffer.value.decode() for shift in range(64)
-             if dll.arcus_features_to_string(1 << shift, buffer, len(buffer)) == 0]
-    return {engine for engine in _ENGINE_CALLS if any(n.startswith(engine.upper() + "_") for n in names)}
+    """The engines `dll` was built with: those whose calls it exports."""
+    return {engine for engine in _ENGINE_CALLS
+            if any(_engine_of(name) == engine and hasattr(dll, name) for name in _PROTOTYPES)}
 
 
 def _absent(name, engine):

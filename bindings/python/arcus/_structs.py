@@ -306,5 +306,29 @@ class RainbowSkyStruct(ctypes.Structure):
     ]
 
 
+class DipoleStruct(ctypes.Structure):
+    _fields_ = [
+        ("sigma_a", c_double * 3),
+        ("sigma_s_prime", c_double * 3),
+        ("eta", c_double),
+    ]
+
+
+class DipoleTermsStruct(ctypes.Structure):
+    _fields_ = [
+        ("albedo", c_double * 3),
+        ("sigma_t_prime", c_double * 3),
+        ("sigma_tr", c_double * 3),
+        ("diffuse_length", c_double * 3),
+        ("z_r", c_double * 3),
+        ("z_v", c_double * 3),
+        ("total_reflectance", c_double * 3),
+        ("diffusive", c_int32 * 3),
+        ("f_dr", c_double),
+        ("a", c_double),
+        ("exit_transmittance", c_double),
+    ]
+
+
 #: void (*arcus_error_callback)(void* user, arcus_status status, const char* message)
 ERROR_CALLBACK = ctypes.CFUNCTYPE(None, c_void_p, c_int, c_char_p)
