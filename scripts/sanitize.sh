@@ -84,7 +84,7 @@ if reports "$logs/ctest-full.log"; then [ $ctest_rc -ne 0 ] || ctest_rc=1; fi
 # under the sanitizer: they run in the plain pass only.
 t0=$SECONDS
 LD_PRELOAD="$preload" ASAN_OPTIONS="$asan:detect_leaks=0" ARCUS_LIBRARY="$build/libarcus.so" \
-  python3 -m pytest -v --capture=sys -p no:cacheprovider -m "not end_to_end" tests/python 2>&1 | tee "$logs/pytest.log"
+  python3 -m pytest -v --capture=sys -p no:cacheprovider -m "not end_to_end and not external_reference" tests/python 2>&1 | tee "$logs/pytest.log"
 pytest_rc=$?
 pytest_s=$((SECONDS - t0))
 if reports "$logs/pytest.log"; then [ $pytest_rc -ne 0 ] || pytest_rc=1; fi

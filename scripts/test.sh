@@ -8,7 +8,7 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 start=$SECONDS
-bash scripts/bootstrap.sh || exit 1
+bash scripts/bootstrap.sh --test || exit 1
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null || exit 1
 cmake --build build -j2 || exit 1
 

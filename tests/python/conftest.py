@@ -41,6 +41,8 @@ def pytest_collection_modifyitems(config, items):
 def pytest_configure(config):
     config.addinivalue_line("markers", "end_to_end: runs the arcus command or the documentation as a user does "
                             "(subprocesses; the sanitizer run skips them, they test no library code of their own)")
+    config.addinivalue_line("markers", "external_reference: runs another renderer (Mitsuba 3) as a reference, no "
+                            "library code (the sanitizer run skips them: their own libraries are not instrumented)")
 
 
 @pytest.fixture(scope="session")
