@@ -81,8 +81,8 @@ arcus_status arcus_translucency_dipole_profile(const arcus_dipole* dipole, doubl
     // Stretching the profile by s: R_d(r/s), and /s² to keep ∫2πr R_d dr (§5.2).
     const double factor = scaling == ARCUS_PROFILE_SCALE_ENERGY ? 1 / (scale * scale) : 1;
     for (int c = 0; c < 3; ++c) {
-      const Channel ch = channel_of(*dipole, c);
-      for (size_t i = 0; i < count; ++i) rd[3 * i + c] = factor * diffuse_reflectance(ch, r_mm[i] / scale);
+      const Terms t = terms(channel_of(*dipole, c));
+      for (size_t i = 0; i < count; ++i) rd[3 * i + c] = factor * diffuse_reflectance(t, r_mm[i] / scale);
     }
   });
 }

@@ -32,8 +32,7 @@ Terms terms(const Channel& c) {
   return t;
 }
 
-double diffuse_reflectance(const Channel& c, double r) {
-  const Terms t = terms(c);
+double diffuse_reflectance(const Terms& t, double r) {
   const double d_r = std::hypot(r, t.z_r), d_v = std::hypot(r, t.z_v);
   // Each source contributes z(1 + σ_tr d)e^{−σ_tr d}/d³: the thesis' extra 1/σ′_t would
   // make R_d a length⁻¹ rather than an area⁻¹, and ∫2πr R_d dr not R_total.

@@ -28,8 +28,9 @@ struct Terms {
 };
 Terms terms(const Channel& c);
 
-// R_d(r) per mm² at distance r mm (eq. 3.7 corrected).
-double diffuse_reflectance(const Channel& c, double r);
+// R_d(r) per mm² at distance r mm (eq. 3.7 corrected), from a channel's terms (computed
+// once for all the distances a caller evaluates).
+double diffuse_reflectance(const Terms& t, double r);
 
 // ∫ 2πr R_d(r) dr in closed form: (α′/2)(1 + e^{−(4/3)A s}) e^{−s}, s = sqrt(3(1 − α′)).
 double total_reflectance(double albedo, double eta);
