@@ -12,23 +12,6 @@ uint64_t percentile999(std::vector<uint64_t> steps) {
   return steps[at];
 }
 
-Frame camera_frame(const CameraDesc& c) {
-  Frame f;
-  f.origin = c.position;
-  f.forward = normalized(c.look_at - f.origin);
-  f.right = normalized(cross(f.forward, c.up));
-  f.up = cross(f.right, f.forward);
-  f.tan_half = std::tan(0.5 * c.vfov_deg * M_PI / 180.0);
-  f.aspect = static_cast<double>(c.width) / c.height;
-  return f;
-}
-
-Vec3 pixel_direction(const Frame& f, const CameraDesc& c, uint32_t i, uint32_t j) {
-  const double px = (2.0 * (i + 0.5) / c.width - 1.0) * f.tan_half * f.aspect;
-  const double py = (1.0 - 2.0 * (j + 0.5) / c.height) * f.tan_half;
-  return f.forward + px * f.right + py * f.up;
-}
-
 uint64_t probe_steps(arcus_context_t* ctx, RenderScene* scene, const arcus_advance_params& params, const Batch& probe,
                      double* seconds) {
   const TraceOutput t = trace(ctx, scene, params, probe.input(false));

@@ -19,16 +19,9 @@ namespace arcus::render {
 // for it (recorded step by step, the room past a region's longest path is never touched).
 uint64_t percentile999(std::vector<uint64_t> steps);
 
-// The camera's frame: forward, right and true up.
-struct Frame {
-  Vec3 origin, forward, right, up;
-  double tan_half, aspect;
-};
-
-Frame camera_frame(const CameraDesc& c);
-
-// Pixel (i, j)'s direction: through its centre, rows top to bottom.
-Vec3 pixel_direction(const Frame& f, const CameraDesc& c, uint32_t i, uint32_t j);
+using scene::camera_frame;
+using scene::Frame;
+using scene::pixel_direction;
 
 // A batch of rays to trace and where their results go.
 struct Batch {

@@ -54,6 +54,31 @@ arcus_camera camera_struct(const CameraDesc& d) {
   return c;
 }
 
+Frame camera_frame(const CameraDesc& c) {
+  Frame f;
+  f.origin = c.position;
+  f.forward = normalized(c.look_at - f.origin);
+  f.right = normalized(cross(f.forward, c.up));
+  f.up = cross(f.right, f.forward);
+  f.tan_half = std::tan(0.5 * c.vfov_deg * M_PI / 180.0);
+  f.aspect = static_cast<double>(c.width) / c.height;
+  return f;
+}
+
+Vec3 pixel_direction(const Frame& f, const CameraDesc& c, uint32_t i, uint32_t j) {
+  const double px = (2.0 * (i + 0.5) / c.width - 1.0) * f.tan_half * f.aspect;
+  const double py = (1.0 - 2.0 * (j + 0.5) / c.height) * f.tan_half;
+  return f.forward + px * f.right + py * f.up;
+}
+
+void orthographic_ray(const Frame& f, const CameraDesc& c, double height, uint32_t i, uint32_t j, Vec3* origin,
+                      Vec3* direction) {
+  const double px = (2.0 * (i + 0.5) / c.width - 1.0) * 0.5 * height * f.aspect;
+  const double py = (1.0 - 2.0 * (j + 0.5) / c.height) * 0.5 * height;
+  *origin = f.origin + px * f.right + py * f.up;
+  *direction = f.forward;
+}
+
 CameraDesc parse_camera(const json::Node& n, Vec3 default_up) {
   n.expect_object({"position", "look_at", "up", "vfov_deg", "width", "height"});
   CameraDesc d;

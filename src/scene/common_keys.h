@@ -36,6 +36,22 @@ void check_camera(const CameraDesc& camera, const std::string& what);
 CameraDesc camera_desc(const arcus_camera& camera);
 arcus_camera camera_struct(const CameraDesc& camera);
 
+// The camera's frame: forward, right and true up.
+struct Frame {
+  Vec3 origin, forward, right, up;
+  double tan_half, aspect;
+};
+Frame camera_frame(const CameraDesc& c);
+
+// Pixel (i, j)'s direction through its centre, rows top to bottom: the pinhole's ray.
+Vec3 pixel_direction(const Frame& f, const CameraDesc& c, uint32_t i, uint32_t j);
+
+// Pixel (i, j)'s ray of an orthographic camera whose view is `height` (> 0, the scene's
+// units) tall and as wide as the image's aspect makes it: every ray runs along forward,
+// from the plane through `position` square to it (vfov_deg is not used).
+void orthographic_ray(const Frame& f, const CameraDesc& c, double height, uint32_t i, uint32_t j, Vec3* origin,
+                      Vec3* direction);
+
 // A scene's "camera" object (position, look_at, up, vfov_deg, width, height), checked;
 // `default_up` is the engine's world up (render: +y; ocean, whose surface is z = 0: +z).
 CameraDesc parse_camera(const json::Node& node, Vec3 default_up);
