@@ -1,8 +1,9 @@
 /*
  * arcus translucency: subsurface light transport by the dipole diffusion model (thesis
  * §3.1.4; Jensen, Marschner, Levoy & Hanrahan, SIGGRAPH 2001), its measured materials,
- * and the inversion from what a photograph shows (total diffuse reflectance and diffuse
- * mean free path) to coefficients (Jensen & Buhler, TOG 2002).  docs/translucency.md.
+ * the inversion from what a photograph shows (total diffuse reflectance and diffuse
+ * mean free path) to coefficients, and rendering through it (Jensen & Buhler, TOG
+ * 2002).  docs/translucency.md.
  * Include arcus.h.
  *
  * Units: coefficients in mm⁻¹ and distances in mm (as the measured tables give them);
@@ -13,13 +14,14 @@
  * eq. 3.7's virtual source lies at z_v = z_r(1 + 4A/3) and R_d carries no extra
  * 1/σ′_t; eq. 3.5's Henyey–Greenstein is the standard, normalised one.
  *
- * These calls are host code and take no context: errors go to arcus_last_error()
- * (thread-local), naming the argument.
+ * The model's calls are host code and take no context: errors go to arcus_last_error()
+ * (thread-local), naming the argument.  Rendering (below) is a job on a context.
  */
 #ifndef ARCUS_TRANSLUCENCY_H
 #define ARCUS_TRANSLUCENCY_H
 
 #include "arcus_core.h"
+#include "arcus_scene.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -87,6 +89,90 @@ ARCUS_API arcus_status arcus_translucency_henyey_greenstein(double g, size_t cou
  * formulas the rainbow engine's amplitudes use (kernels/common/fresnel.h). */
 ARCUS_API arcus_status arcus_translucency_fresnel_reflectance(double cos_i, double n1, double n2,
                                                               double* reflectance);
+
+
+/* ---- rendering (thesis eq. 3.6–3.8; Jensen & Buhler 2002) ----------------------------
+ * A closed triangle mesh of one homogeneous medium, lit by directional lights, seen by a
+ * camera: irradiance E at area samples spread evenly over the surface (eq. 3.8, each
+ * light through the boundary's Fresnel transmittance, shadow rays through the shared
+ * BVH), then per pixel the light leaving where the camera ray meets the surface,
+ *   L = (1/π) F_t(η, ω_o) Σ_i R_d(|x_o − x_i|) E_i ΔA_i          (eq. 3.6)
+ * plus a Fresnel-weighted Phong highlight.  docs/translucency.md.
+ *
+ * Feature bits 48–55 are the translucency engine's. */
+#define ARCUS_FEATURE_TRANSLUCENCY_DIPOLE (UINT64_C(1) << 48)       /* R_d as the dipole           */
+#define ARCUS_FEATURE_TRANSLUCENCY_HIERARCHICAL (UINT64_C(1) << 49) /* the tree gather; else all pairs */
+
+/* A light at infinity: `direction` points toward it (any length > 0, the mesh's frame),
+ * `irradiance` (RGB, >= 0) is what it gives a surface facing it, in any unit the image
+ * then shares. */
+typedef struct arcus_directional_light {
+  double direction[3];
+  double irradiance[3];
+} arcus_directional_light;
+
+/* Eq. 3.6's exit term (1/π)F_t(η, ω_o) sends only 1 − 2·FM1 (exit_transmittance,
+ * 0.939 at η = 1.3) of what reaches the boundary out of it; NORMALIZED divides by that,
+ * as pbrt's separable BSSRDF does, so that a diffusing medium conserves energy. */
+typedef enum arcus_exit_term { ARCUS_EXIT_THESIS = 0, ARCUS_EXIT_NORMALIZED = 1 } arcus_exit_term;
+
+/* How the irradiance samples are gathered per pixel. */
+typedef enum arcus_gather {
+  ARCUS_GATHER_HIERARCHICAL = 0, /* a BVH over the samples, far nodes as one (default)  */
+  ARCUS_GATHER_BRUTE_FORCE = 1   /* every sample for every pixel: the reference         */
+} arcus_gather;
+
+typedef struct arcus_translucency_render_params {
+  arcus_camera camera;       /* positions in mesh units                                   */
+  double ortho_height;       /* > 0: an orthographic view this tall (mesh units), rays along
+                                the camera's view; 0: the pinhole camera                    */
+  double mm_per_unit;        /* how long a mesh unit is, in mm (> 0)                        */
+  int32_t exit;              /* arcus_exit_term                                            */
+  double profile_scale;      /* §5.2's stretch of the profile (1: none) ...                 */
+  int32_t profile_scaling;   /* ... as arcus_profile_scaling says                          */
+  double sample_spacing_mm;  /* the samples' spacing; 0: the smallest channel's mean free
+                                path 1/σ′_t, coarsened if the samples would exceed 2^22      */
+  int32_t gather;            /* arcus_gather                                               */
+  double max_solid_angle;    /* hierarchical: a node seen under less (area/d², sr) counts as
+                                one sample; 0.005 by default                               */
+  double highlight_deg;      /* the Phong highlight's angle b, degrees (eq. 3.3: exponent
+                                −ln 2/ln cos b; reflectance F_r(η)); 0: no highlight       */
+  arcus_progress_callback progress; /* called after each slice of pixels; may be NULL       */
+  void* progress_user;
+} arcus_translucency_render_params;
+
+/* Defaults: a 256 × 256 pinhole camera at (0, 0, 5) looking at the origin, y up, 30°;
+ * 1 mm per unit, the thesis' exit term, no stretch, automatic spacing, hierarchical
+ * gather at 0.005 sr, a 10° highlight (Table 3.1's b). */
+ARCUS_API arcus_status arcus_translucency_render_params_init(arcus_translucency_render_params* params);
+
+/* Renders `mesh` (closed, its triangles wound either way: the normals are turned
+ * outwards by the sign of its volume) made of `dipole` under `light_count` (1..64)
+ * lights.  Errors name the parameter (params->camera.width, lights[2].irradiance[1],
+ * params->sample_spacing_mm when the samples would exceed 2^22, ...); a cancelled
+ * render returns ARCUS_ERROR_CANCELLED with the job (pixels not reached are 0). */
+ARCUS_API arcus_status arcus_translucency_render(arcus_context_t* ctx, arcus_mesh_t* mesh, const arcus_dipole* dipole,
+                                                 size_t light_count, const arcus_directional_light* lights,
+                                                 const arcus_translucency_render_params* params, arcus_job_t** job);
+
+typedef struct arcus_translucency_render_stats {
+  uint32_t width, height;
+  uint64_t samples;            /* irradiance samples on the surface                       */
+  double sample_spacing_mm;    /* their spacing, as chosen                                */
+  double surface_area_mm2;     /* the mesh's area                                         */
+  uint64_t covered_pixels;     /* pixels that see the mesh                                */
+  uint64_t tree_nodes;         /* hierarchical: nodes of the samples' BVH (else 0)        */
+  double mean_visits;          /* hierarchical: nodes visited per covered pixel            */
+  double irradiance_seconds;   /* samples, their irradiance and the camera rays            */
+  double gather_seconds;       /* the gather kernel (its launches' wall time)              */
+} arcus_translucency_render_stats;
+
+ARCUS_API arcus_status arcus_job_get_translucency_stats(arcus_job_t* job, arcus_translucency_render_stats* stats);
+/* Linear RGB radiance, width × height × 3 floats, top row first (0 where no surface is
+ * seen); any pointer may be NULL.  `subsurface` is eq. 3.6's part alone, `covered` 1
+ * where the pixel sees the mesh. */
+ARCUS_API arcus_status arcus_job_get_translucency_image(arcus_job_t* job, float* rgb, float* subsurface,
+                                                        uint8_t* covered);
 
 #ifdef __cplusplus
 }

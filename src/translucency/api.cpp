@@ -1,5 +1,6 @@
 // The translucency engine's C API (include/arcus/arcus_translucency.h): host calls on
-// the dipole model, with no context (errors go to the thread's last error).
+// the dipole model, with no context (errors go to the thread's last error), and the
+// render, a job on a context.
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -7,8 +8,10 @@
 
 #include "core/call.h"
 #include "core/format.h"
+#include "geometry/mesh_handle.h"
 #include "translucency/dipole.h"
 #include "translucency/materials.h"
+#include "translucency/render.h"
 
 using namespace arcus;
 using namespace arcus::api;
@@ -168,6 +171,59 @@ arcus_status arcus_translucency_fresnel_reflectance(double cos_i, double n1, dou
     require(std::isfinite(n1) && n1 > 0, "n1 = " + number(n1) + " is not a finite refractive index > 0");
     require(std::isfinite(n2) && n2 > 0, "n2 = " + number(n2) + " is not a finite refractive index > 0");
     *reflectance = fresnel_reflectance(cos_i, n1, n2);
+  });
+}
+
+arcus_status arcus_translucency_render_params_init(arcus_translucency_render_params* params) {
+  return without_context([&] {
+    require_pointer(params, "params");
+    arcus_translucency_render_params p{};
+    p.camera = arcus_camera{{0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 30, 256, 256};
+    p.mm_per_unit = 1;
+    p.exit = ARCUS_EXIT_THESIS;
+    p.profile_scale = 1;
+    p.profile_scaling = ARCUS_PROFILE_SCALE_ENERGY;
+    p.gather = ARCUS_GATHER_HIERARCHICAL;
+    p.max_solid_angle = kDefaultSolidAngle;
+    p.highlight_deg = 10;
+    *params = p;
+  });
+}
+
+arcus_status arcus_translucency_render(arcus_context_t* ctx, arcus_mesh_t* mesh, const arcus_dipole* dipole,
+                                       size_t light_count, const arcus_directional_light* lights,
+                                       const arcus_translucency_render_params* params, arcus_job_t** job) {
+  return on<arcus_context_s>(ctx, kContextHandle, "ctx", [&](arcus_context_s*, std::string* message) {
+    require_pointer(job, "job");
+    *job = nullptr;
+    const auto* m = object_of<arcus_mesh_s>(ctx, mesh, geometry::kMeshHandle, "mesh");
+    check_dipole(dipole);
+    require_pointer(params, "params");
+    require(light_count <= 64, "light_count = " + std::to_string(light_count) + " is not 1..64");
+    if (light_count > 0) require_pointer(lights, "lights");
+    const std::vector<arcus_directional_light> list(lights, lights + light_count);
+    bool cancelled = false;
+    auto j = translucency::render(ctx, m->mesh, *dipole, list, *params, &cancelled);
+    retain_context(ctx);  // the job's reference
+    *job = j.release();
+    if (!cancelled) return ARCUS_SUCCESS;
+    *message = "the progress callback cancelled the render: pixels not reached are 0";
+    return ARCUS_ERROR_CANCELLED;
+  });
+}
+
+arcus_status arcus_job_get_translucency_stats(arcus_job_t* job, arcus_translucency_render_stats* stats) {
+  return on_job<RenderJob>(job, "a translucency render", [&](RenderJob* j) {
+    require_pointer(stats, "stats");
+    *stats = j->render;
+  });
+}
+
+arcus_status arcus_job_get_translucency_image(arcus_job_t* job, float* rgb, float* subsurface, uint8_t* covered) {
+  return on_job<RenderJob>(job, "a translucency render", [&](RenderJob* j) {
+    copy_out(j->rgb, rgb);
+    copy_out(j->subsurface, subsurface);
+    copy_out(j->covered, covered);
   });
 }
 

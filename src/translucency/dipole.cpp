@@ -5,9 +5,11 @@
 #include "core/error.h"
 #include "core/format.h"
 
-// kernels/common/fresnel.h is scalar code the host includes after common/real.h.
+// kernels/common/fresnel.h and kernels/translucency/dipole_rd.h are scalar code the host
+// includes after common/real.h.
 #include "common/real.h"
 #include "common/fresnel.h"
+#include "translucency/dipole_rd.h"
 
 namespace arcus::translucency {
 
@@ -33,11 +35,7 @@ Terms terms(const Channel& c) {
 }
 
 double diffuse_reflectance(const Terms& t, double r) {
-  const double d_r = std::hypot(r, t.z_r), d_v = std::hypot(r, t.z_v);
-  // Each source contributes z(1 + σ_tr d)e^{−σ_tr d}/d³: the thesis' extra 1/σ′_t would
-  // make R_d a length⁻¹ rather than an area⁻¹, and ∫2πr R_d dr not R_total.
-  auto source = [&](double z, double d) { return z * (1 + t.sigma_tr * d) * std::exp(-t.sigma_tr * d) / (d * d * d); };
-  return t.albedo / (4 * M_PI) * (source(t.z_r, d_r) + source(t.z_v, d_v));
+  return arcus_dipole_rd(r * r, t.z_r, t.z_v, t.sigma_tr, t.albedo / (4 * M_PI));
 }
 
 double total_reflectance(double albedo, double eta) {

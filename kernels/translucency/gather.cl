@@ -1,0 +1,109 @@
+/* The gather of thesis eq. 3.6 (translucency_desc.h): per exit point, Σ R_d E ΔA over
+ * the irradiance samples.  Two kernels, one per program (the feature decides):
+ *   arcus_translucency_gather_all   every sample for every point: the reference, with
+ *                                   ARCUS_LANES points side by side (PoCL runs a
+ *                                   per-item loop scalar, lanes make it vector code)
+ *   arcus_translucency_gather_tree  the hierarchical method (ARCUS_USE_HIERARCHICAL):
+ *                                   one point a work-item, lanes 1, a stack walk */
+
+/* Σ over channels c of p_c·R_d,c(r²) into acc[c]. */
+#define ARCUS_ADD_SAMPLE(acc, r2, p0, p1, p2)                                                            \
+  do {                                                                                                    \
+    (acc)[0] += (p0) * arcus_dipole_rd((r2), ch[0], ch[1], ch[2], ch[3]);                                  \
+    (acc)[1] += (p1) * arcus_dipole_rd((r2), ch[4], ch[5], ch[6], ch[7]);                                  \
+    (acc)[2] += (p2) * arcus_dipole_rd((r2), ch[8], ch[9], ch[10], ch[11]);                                \
+  } while (0)
+
+#ifndef ARCUS_USE_HIERARCHICAL
+
+kernel void arcus_translucency_gather_all(ARCUS_PARAMS(ARCUS_TRANSLUCENCY_GATHER_ALL_ARGS)) {
+  const uint item = (uint)get_global_id(0);
+  if (item * ARCUS_GROUPS >= count) return;
+  REAL ch[3 * ARCUS_DIPOLE_TERMS];
+  for (int k = 0; k < 3 * ARCUS_DIPOLE_TERMS; ++k) ch[k] = channels[k];
+  /* This item's lane groups of points; past the slice's end a group repeats its last
+   * one (slices need not be whole work-items). */
+  uint at[ARCUS_GROUPS];
+  FOR_GROUPS(g) at[g] = min(first + item * ARCUS_GROUPS + g, first + count - 1);
+  REALV x[ARCUS_GROUPS], y[ARCUS_GROUPS], z[ARCUS_GROUPS], acc[ARCUS_GROUPS][3];
+  FOR_GROUPS(g) {
+    x[g] = VLOAD(at[g], exits);
+    y[g] = VLOAD(at[g], exits + stride);
+    z[g] = VLOAD(at[g], exits + 2 * (size_t)stride);
+    acc[g][0] = acc[g][1] = acc[g][2] = RC(0.0);
+  }
+  for (uint s = 0; s < sample_count; ++s) {
+    const REAL sx = samples[3 * (size_t)s], sy = samples[3 * (size_t)s + 1], sz = samples[3 * (size_t)s + 2];
+    const REAL p0 = powers[3 * (size_t)s], p1 = powers[3 * (size_t)s + 1], p2 = powers[3 * (size_t)s + 2];
+    FOR_GROUPS(g) {
+      const REALV dx = x[g] - sx, dy = y[g] - sy, dz = z[g] - sz;
+      const REALV r2 = dx * dx + dy * dy + dz * dz;
+      ARCUS_ADD_SAMPLE(acc[g], r2, p0, p1, p2);
+    }
+  }
+  FOR_GROUPS(g) {
+    VSTORE(acc[g][0], at[g], sums);
+    VSTORE(acc[g][1], at[g], sums + stride);
+    VSTORE(acc[g][2], at[g], sums + 2 * (size_t)stride);
+  }
+}
+
+#else
+
+/* Squared distance from p to the box (0 inside). */
+ARCUS_INLINE REAL box_distance2(__global const bvh_node* n, REAL px, REAL py, REAL pz) {
+  const REAL p[3] = {px, py, pz};
+  REAL d2 = RC(0.0);
+  for (int a = 0; a < 3; ++a) {
+    const REAL below = n->lo[a] - p[a], above = p[a] - n->hi[a];
+    const REAL d = fmax(RC(0.0), fmax(below, above));
+    d2 += d * d;
+  }
+  return d2;
+}
+
+kernel void arcus_translucency_gather_tree(ARCUS_PARAMS(ARCUS_TRANSLUCENCY_GATHER_TREE_ARGS)) {
+  const uint item = (uint)get_global_id(0);
+  if (item >= count) return;
+  const uint point = first + item;
+  REAL ch[3 * ARCUS_DIPOLE_TERMS];
+  for (int k = 0; k < 3 * ARCUS_DIPOLE_TERMS; ++k) ch[k] = channels[k];
+  const REAL x = exits[point], y = exits[stride + point], z = exits[2 * (size_t)stride + point];
+  REAL acc[3] = {RC(0.0), RC(0.0), RC(0.0)};
+  uint visited = 0;
+  int stack[ARCUS_BVH_MAX_DEPTH + 1];
+  int top = 0;
+  if (nodes[0].first >= 0) stack[top++] = 0;
+  while (top > 0) {
+    const int at = stack[--top];
+    __global const bvh_node* n = nodes + at;
+    __global const REAL* c = clusters + (size_t)at * ARCUS_CLUSTER_SIZE;
+    ++visited;
+    const REAL p0 = c[ARCUS_CLUSTER_POWER], p1 = c[ARCUS_CLUSTER_POWER + 1], p2 = c[ARCUS_CLUSTER_POWER + 2];
+    if (p0 == RC(0.0) && p1 == RC(0.0) && p2 == RC(0.0)) continue; /* unlit: adds nothing */
+    const REAL dx = x - c[ARCUS_CLUSTER_CENTROID], dy = y - c[ARCUS_CLUSTER_CENTROID + 1],
+               dz = z - c[ARCUS_CLUSTER_CENTROID + 2];
+    const REAL r2 = dx * dx + dy * dy + dz * dz;
+    /* Far enough: the whole node as one sample at its centroid, when it is seen under a
+     * solid angle area/d² below the bound (Jensen & Buhler 2002). */
+    if (box_distance2(n, x, y, z) > RC(0.0) && c[ARCUS_CLUSTER_AREA] < max_solid_angle * r2) {
+      ARCUS_ADD_SAMPLE(acc, r2, p0, p1, p2);
+    } else if (n->count > 0) {
+      for (int s = n->first; s < n->first + n->count; ++s) {
+        const REAL ex = x - samples[3 * (size_t)s], ey = y - samples[3 * (size_t)s + 1],
+                   ez = z - samples[3 * (size_t)s + 2];
+        const REAL q2 = ex * ex + ey * ey + ez * ez;
+        ARCUS_ADD_SAMPLE(acc, q2, powers[3 * (size_t)s], powers[3 * (size_t)s + 1], powers[3 * (size_t)s + 2]);
+      }
+    } else {
+      stack[top++] = n->first;
+      stack[top++] = n->first + 1;
+    }
+  }
+  sums[point] = acc[0];
+  sums[stride + point] = acc[1];
+  sums[2 * (size_t)stride + point] = acc[2];
+  visits[point] = visited;
+}
+
+#endif

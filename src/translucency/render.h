@@ -1,0 +1,40 @@
+// Rendering a translucent object (thesis eq. 3.6–3.8): irradiance samples over the
+// surface (surface.h), then per pixel the gather of kernels/translucency/gather.cl —
+// every sample (the reference) or a BVH over them with far nodes taken whole (Jensen &
+// Buhler 2002) — times the exit term, plus a Fresnel-weighted Phong highlight.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "arcus/arcus_translucency.h"
+#include "core/job.h"
+#include "geometry/mesh.h"
+#include "translucency/dipole.h"
+
+namespace arcus::translucency {
+
+struct RenderJob : arcus_job_s {
+  explicit RenderJob(arcus_context_t* ctx) : arcus_job_s(ctx, "translucency render") {}
+  arcus_translucency_render_stats render{};
+  std::vector<float> rgb, subsurface;  // 3 per pixel
+  std::vector<uint8_t> covered;        // per pixel
+};
+
+// The most irradiance samples a render takes (~200 MB of host arrays).
+constexpr uint64_t kMaxSamples = uint64_t(1) << 22;
+
+// Hierarchical gather: the solid angle (sr) under which a node counts as one sample.
+constexpr double kDefaultSolidAngle = 0.005;
+
+// Checks every parameter but the dipole (the caller's: api.cpp) and the mesh, naming
+// them as the C API does ("params->exit", "lights[1].direction"), and renders; *cancelled when the progress callback stopped it.
+std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const geometry::Mesh& mesh, const arcus_dipole& dipole,
+                                  const std::vector<arcus_directional_light>& lights,
+                                  const arcus_translucency_render_params& params, bool* cancelled);
+
+// Phong's exponent for a highlight of angle b (thesis eq. 3.3): −ln 2 / ln cos b.
+double phong_exponent(double b_deg);
+
+}  // namespace arcus::translucency

@@ -1,0 +1,68 @@
+// What the translucency engine knows of an object's surface: the mesh in mm with
+// outward normals, irradiance samples spread evenly over it, the irradiance each gets
+// from directional lights (thesis eq. 3.8) and where camera rays meet it.  Shared by
+// rendering (render.cpp) and, later, estimation from a photograph.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "bvh/device_bvh.h"
+#include "geometry/mesh.h"
+#include "geometry/vec3.h"
+#include "scene/common_keys.h"
+
+namespace arcus::translucency {
+
+// The mesh in mm and what follows from its triangles.
+struct Surface {
+  geometry::Mesh mesh;          // positions in mm
+  std::vector<double> normals;  // 3 per triangle: unit, outward (by the sign of the volume)
+  std::vector<double> areas;    // per triangle [mm²]
+  double area = 0;              // the whole surface [mm²]
+  double diagonal = 0;          // of its bounding box [mm]
+};
+
+// `mesh` scaled by mm_per_unit, its normals turned outwards when its volume is negative.
+Surface make_surface(const geometry::Mesh& mesh, double mm_per_unit);
+
+// Irradiance samples: each triangle cut into k² congruent triangles (k = ⌈longest edge /
+// spacing⌉), a sample at each one's centroid carrying its area (the midpoint rule).
+struct Samples {
+  std::vector<double> positions;  // 3 per sample [mm]
+  std::vector<uint32_t> triangle; // the triangle each lies on
+  std::vector<double> areas;      // ΔA [mm²]
+  size_t size() const { return areas.size(); }
+};
+
+// How many samples `spacing` gives (saturating at UINT64_MAX), and the samples.
+uint64_t sample_count(const Surface& surface, double spacing);
+Samples make_samples(const Surface& surface, double spacing);
+
+struct Light {
+  Vec3 toward;          // unit, toward the light
+  double irradiance[3]; // on a surface facing it
+};
+
+// Whether each point (3 per point, on the surface, with its triangle's outward normal)
+// sees each light: a shadow ray per pair through the BVH, started a hair off the
+// surface.  visible[p * lights + l].
+std::vector<uint8_t> visibility(arcus_context_t* ctx, const bvh::DeviceBvh& bvh, const Surface& surface,
+                                const std::vector<double>& points, const std::vector<uint32_t>& triangle,
+                                const std::vector<Light>& lights);
+
+// Eq. 3.8 for directional lights: per sample and channel Σ_l F_t(η, cos θ_l) E_l cos θ_l
+// over the lights it sees (3 per sample).
+std::vector<double> sample_irradiance(arcus_context_t* ctx, const bvh::DeviceBvh& bvh, const Surface& surface,
+                                      const Samples& samples, const std::vector<Light>& lights, double eta);
+
+// Where each pixel's camera ray first meets the surface (camera and heights in mm).
+struct Views {
+  std::vector<double> points;      // 3 per pixel [mm]; NaN where none
+  std::vector<double> toward_eye;  // 3 per pixel: unit, back along the ray
+  std::vector<int32_t> triangle;   // -1 where none
+};
+Views camera_hits(arcus_context_t* ctx, const bvh::DeviceBvh& bvh, const Surface& surface,
+                  const scene::CameraDesc& camera, double ortho_height);
+
+}  // namespace arcus::translucency
