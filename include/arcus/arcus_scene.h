@@ -84,6 +84,13 @@ ARCUS_API arcus_status arcus_mesh_retain(arcus_mesh_t* mesh);
 ARCUS_API arcus_status arcus_mesh_release(arcus_mesh_t* mesh);
 /* Its counts; either pointer may be NULL (not wanted). */
 ARCUS_API arcus_status arcus_mesh_get_counts(arcus_mesh_t* mesh, size_t* vertex_count, size_t* triangle_count);
+/* The mesh file at `path` (OBJ, PLY, OFF or STL, as every engine reads them): the same
+ * mesh as arcus_mesh_create on its arrays.  A missing or unreadable file is
+ * ARCUS_ERROR_IO, a malformed one ARCUS_ERROR_INVALID_ARGUMENT; both name the file. */
+ARCUS_API arcus_status arcus_mesh_load(arcus_context_t* ctx, const char* path, arcus_mesh_t** out);
+/* Its arrays: vertex_count × 3 doubles and triangle_count × 3 indices (counts from
+ * arcus_mesh_get_counts); either pointer may be NULL (not wanted). */
+ARCUS_API arcus_status arcus_mesh_get_arrays(arcus_mesh_t* mesh, double* vertices, uint32_t* indices);
 
 #ifdef __cplusplus
 }

@@ -1,4 +1,5 @@
-// Meshes from memory (include/arcus/arcus_scene.h): arcus_mesh_create and its handle.
+// Meshes from memory (include/arcus/arcus_scene.h): arcus_mesh_create, arcus_mesh_load and
+// the handle.
 #include <memory>
 
 #include "core/call.h"
@@ -33,6 +34,24 @@ arcus_status arcus_mesh_get_counts(arcus_mesh_t* mesh, size_t* vertex_count, siz
   return simple<arcus_mesh_s>(mesh, geometry::kMeshHandle, "mesh", [&](arcus_mesh_s* m) {
     if (vertex_count) *vertex_count = m->mesh.vertex_count();
     if (triangle_count) *triangle_count = m->mesh.triangle_count();
+  });
+}
+
+arcus_status arcus_mesh_load(arcus_context_t* ctx, const char* path, arcus_mesh_t** out) {
+  return simple<arcus_context_s>(ctx, kContextHandle, "ctx", [&](arcus_context_s*) {
+    require_pointer(out, "out");
+    *out = nullptr;
+    require_pointer(path, "path");
+    auto mesh = std::make_unique<arcus_mesh_s>(ctx, geometry::load_mesh(path));
+    retain_context(ctx);  // the mesh's reference
+    *out = mesh.release();
+  });
+}
+
+arcus_status arcus_mesh_get_arrays(arcus_mesh_t* mesh, double* vertices, uint32_t* indices) {
+  return simple<arcus_mesh_s>(mesh, geometry::kMeshHandle, "mesh", [&](arcus_mesh_s* m) {
+    copy_out(m->mesh.positions, vertices);
+    copy_out(m->mesh.triangles, indices);
   });
 }
 

@@ -323,14 +323,14 @@ std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const geometry::Mesh& me
   job->covered.assign(pixels, 0);
   for (size_t i = 0; i < seen.size(); ++i) {
     const size_t px = seen[i];
-    const Vec3 n = vec3(&surface.normals[3 * size_t(seen_triangle[i])]), v = vec3(&views.toward_eye[3 * px]);
+    const Vec3 n = vec3(&views.normals[3 * px]), v = vec3(&views.toward_eye[3 * px]);
     const double cos_o = std::fabs(dot(n, v));
     const double exit = exit_scale * (1 - arcus_fresnel_reflectance(cos_o, 1.0, eta));
     if (p.highlight_deg > 0)
       for (size_t l = 0; l < light_list.size(); ++l) {
         if (!lit[i * light_list.size() + l]) continue;
         const Vec3 to = light_list[l].toward;
-        const double cos_i = dot(n, to);
+        const double cos_i = std::max(0.0, dot(n, to));
         const Vec3 mirror = (2 * cos_i) * n - to;
         const double cos_a = std::max(0.0, dot(mirror, v));
         // Phong's normalised lobe (eq. 3.2) with the Fresnel reflectance as k_s.

@@ -51,7 +51,30 @@ Surface make_surface(const geometry::Mesh& mesh, double mm_per_unit) {
       hi[a] = std::max(hi[a], s.mesh.positions[3 * v + a]);
     }
   s.diagonal = length(hi - lo);
+  // Corner normals: the vertex's triangles within the crease angle, weighted by area.
+  std::vector<std::vector<uint32_t>> at_vertex(s.mesh.vertex_count());
+  for (size_t t = 0; t < n; ++t)
+    for (int k = 0; k < 3; ++k) at_vertex[s.mesh.triangles[3 * t + k]].push_back(static_cast<uint32_t>(t));
+  const double crease = std::cos(kCreaseDeg * M_PI / 180);
+  s.corner_normals.resize(9 * n);
+  for (size_t t = 0; t < n; ++t) {
+    const Vec3 own = vec3(&s.normals[3 * t]);
+    for (int k = 0; k < 3; ++k) {
+      Vec3 sum{};
+      for (uint32_t o : at_vertex[s.mesh.triangles[3 * t + k]]) {
+        const Vec3 other = vec3(&s.normals[3 * size_t(o)]);
+        if (dot(other, own) >= crease) sum = sum + s.areas[o] * other;
+      }
+      store(length(sum) > 0 ? normalized(sum) : own, &s.corner_normals[9 * t + 3 * size_t(k)]);
+    }
+  }
   return s;
+}
+
+Vec3 shading_normal(const Surface& s, size_t t, double u, double v) {
+  const double* c = &s.corner_normals[9 * t];
+  const Vec3 n = (1 - u - v) * vec3(c) + u * vec3(c + 3) + v * vec3(c + 6);
+  return length(n) > 0 ? normalized(n) : vec3(&s.normals[3 * t]);
 }
 
 namespace {
@@ -82,6 +105,7 @@ Samples make_samples(const Surface& s, double spacing) {
   const uint64_t total = sample_count(s, spacing);
   out.positions.reserve(3 * total);
   out.triangle.reserve(total);
+  out.normals.reserve(3 * total);
   out.areas.reserve(total);
   for (size_t t = 0; t < s.areas.size(); ++t) {
     const uint64_t k = cuts(s, t, spacing);
@@ -91,6 +115,8 @@ Samples make_samples(const Surface& s, double spacing) {
     auto add = [&](double u, double v) {
       const Vec3 p = a + (u * inv) * e1 + (v * inv) * e2;
       out.positions.insert(out.positions.end(), {p.x, p.y, p.z});
+      const Vec3 normal = shading_normal(s, t, u * inv, v * inv);
+      out.normals.insert(out.normals.end(), {normal.x, normal.y, normal.z});
       out.triangle.push_back(static_cast<uint32_t>(t));
       out.areas.push_back(piece);
     };
@@ -143,10 +169,10 @@ std::vector<double> sample_irradiance(arcus_context_t* ctx, const bvh::DeviceBvh
   const std::vector<uint8_t> visible = visibility(ctx, bvh, surface, samples.positions, samples.triangle, lights);
   std::vector<double> e(3 * samples.size(), 0.0);
   for (size_t s = 0; s < samples.size(); ++s) {
-    const Vec3 normal = vec3(&surface.normals[3 * size_t(samples.triangle[s])]);
+    const Vec3 normal = vec3(&samples.normals[3 * s]);
     for (size_t l = 0; l < lights.size(); ++l) {
       if (!visible[s * lights.size() + l]) continue;
-      const double cos_i = dot(normal, lights[l].toward);
+      const double cos_i = std::max(0.0, dot(normal, lights[l].toward));
       const double through = cos_i * (1 - arcus_fresnel_reflectance(cos_i, 1.0, eta));
       for (int c = 0; c < 3; ++c) e[3 * s + c] += through * lights[l].irradiance[c];
     }
@@ -183,12 +209,14 @@ Views camera_hits(arcus_context_t* ctx, const bvh::DeviceBvh& bvh, const Surface
   v.points.assign(3 * pixels, NAN);
   v.toward_eye.resize(3 * pixels);
   v.triangle.assign(pixels, -1);
+  v.normals.assign(3 * pixels, NAN);
   for (size_t p = 0; p < pixels; ++p) {
     store(back[p], &v.toward_eye[3 * p]);
     if (hits[p].primitive < 0) continue;
     v.triangle[p] = hits[p].primitive;
     const Vec3 at = vec3(rays[p].origin) + hits[p].t * vec3(rays[p].direction);
     store(at, &v.points[3 * p]);
+    store(shading_normal(surface, size_t(hits[p].primitive), hits[p].u, hits[p].v), &v.normals[3 * p]);
   }
   return v;
 }

@@ -18,10 +18,20 @@ namespace arcus::translucency {
 struct Surface {
   geometry::Mesh mesh;          // positions in mm
   std::vector<double> normals;  // 3 per triangle: unit, outward (by the sign of the volume)
+  // 9 per triangle: each corner's shading normal, the area-weighted mean of the normals
+  // of the triangles at that vertex within kCreaseDeg of this one's (so a cube keeps
+  // flat faces and a sphere turns smooth).
+  std::vector<double> corner_normals;
   std::vector<double> areas;    // per triangle [mm²]
   double area = 0;              // the whole surface [mm²]
   double diagonal = 0;          // of its bounding box [mm]
 };
+
+// Triangles meeting at a vertex at a sharper angle than this keep their own normals.
+constexpr double kCreaseDeg = 45;
+
+// The shading normal at barycentric weights (u, v) of triangle t's corners 1 and 2.
+Vec3 shading_normal(const Surface& s, size_t t, double u, double v);
 
 // `mesh` scaled by mm_per_unit, its normals turned outwards when its volume is negative.
 Surface make_surface(const geometry::Mesh& mesh, double mm_per_unit);
@@ -31,6 +41,7 @@ Surface make_surface(const geometry::Mesh& mesh, double mm_per_unit);
 struct Samples {
   std::vector<double> positions;  // 3 per sample [mm]
   std::vector<uint32_t> triangle; // the triangle each lies on
+  std::vector<double> normals;    // 3 per sample: the shading normal there
   std::vector<double> areas;      // ΔA [mm²]
   size_t size() const { return areas.size(); }
 };
@@ -44,15 +55,15 @@ struct Light {
   double irradiance[3]; // on a surface facing it
 };
 
-// Whether each point (3 per point, on the surface, with its triangle's outward normal)
-// sees each light: a shadow ray per pair through the BVH, started a hair off the
-// surface.  visible[p * lights + l].
+// Whether each point (3 per point, on the surface) sees each light: a shadow ray per
+// pair through the BVH, started a hair off the surface along its triangle's normal;
+// a light behind the triangle is not seen.  visible[p * lights + l].
 std::vector<uint8_t> visibility(arcus_context_t* ctx, const bvh::DeviceBvh& bvh, const Surface& surface,
                                 const std::vector<double>& points, const std::vector<uint32_t>& triangle,
                                 const std::vector<Light>& lights);
 
 // Eq. 3.8 for directional lights: per sample and channel Σ_l F_t(η, cos θ_l) E_l cos θ_l
-// over the lights it sees (3 per sample).
+// over the lights it sees, θ_l from the shading normal (3 per sample).
 std::vector<double> sample_irradiance(arcus_context_t* ctx, const bvh::DeviceBvh& bvh, const Surface& surface,
                                       const Samples& samples, const std::vector<Light>& lights, double eta);
 
@@ -60,6 +71,7 @@ std::vector<double> sample_irradiance(arcus_context_t* ctx, const bvh::DeviceBvh
 struct Views {
   std::vector<double> points;      // 3 per pixel [mm]; NaN where none
   std::vector<double> toward_eye;  // 3 per pixel: unit, back along the ray
+  std::vector<double> normals;     // 3 per pixel: the shading normal where it meets the surface
   std::vector<int32_t> triangle;   // -1 where none
 };
 Views camera_hits(arcus_context_t* ctx, const bvh::DeviceBvh& bvh, const Surface& surface,

@@ -22,6 +22,9 @@ from ._structs import (  # noqa: F401  (re-exported: the package uses _lib.<Stru
     DeviceInfoStruct,
     DipoleStruct,
     DipoleTermsStruct,
+    DirectionalLightStruct,
+    TranslucencyRenderParamsStruct,
+    TranslucencyRenderStatsStruct,
     InversionStruct,
     AtmosphereDescStruct,
     AdvanceParamsStruct,
@@ -114,6 +117,8 @@ _PROTOTYPES = {
     "arcus_mesh_retain": (_status, [_handle]),
     "arcus_mesh_release": (_status, [_handle]),
     "arcus_mesh_get_counts": (_status, [_handle, POINTER(c_size_t), POINTER(c_size_t)]),
+    "arcus_mesh_load": (_status, [_handle, c_char_p, _out_handle]),
+    "arcus_mesh_get_arrays": (_status, [_handle, c_void_p, c_void_p]),
     "arcus_scene_get_field": (_status, [_handle, _out_handle]),
     "arcus_scene_get_advance_params": (_status, [_handle, POINTER(AdvanceParamsStruct)]),
     "arcus_scene_get_ray_count": (_status, [_handle, POINTER(c_size_t)]),
@@ -210,6 +215,12 @@ _PROTOTYPES = {
     "arcus_translucency_dipole_from_reflectance": (_status, [_dvec, _dvec, c_double, POINTER(DipoleStruct)]),
     "arcus_translucency_henyey_greenstein": (_status, [c_double, c_size_t, _dvec, _dvec]),
     "arcus_translucency_fresnel_reflectance": (_status, [c_double, c_double, c_double, _dvec]),
+    "arcus_translucency_render_params_init": (_status, [POINTER(TranslucencyRenderParamsStruct)]),
+    "arcus_translucency_render": (_status, [_handle, _handle, POINTER(DipoleStruct), c_size_t,
+                                            POINTER(DirectionalLightStruct), POINTER(TranslucencyRenderParamsStruct),
+                                            _out_handle]),
+    "arcus_job_get_translucency_stats": (_status, [_handle, POINTER(TranslucencyRenderStatsStruct)]),
+    "arcus_job_get_translucency_image": (_status, [_handle, c_void_p, c_void_p, c_void_p]),
 }
 
 # ---- finding the library --------------------------------------------------------------
@@ -253,7 +264,7 @@ _ENGINE_CALLS = {
     "render": ("arcus_render", "arcus_job_get_render_", "arcus_job_write_render_"),
     "ocean": ("arcus_ocean_", "arcus_water_", "arcus_bio_optical_", "arcus_job_get_ocean_", "arcus_job_write_ocean_"),
     "rainbow": ("arcus_rainbow_", "arcus_particle_", "arcus_job_get_rainbow_", "arcus_job_write_rainbow_"),
-    "translucency": ("arcus_translucency_",),
+    "translucency": ("arcus_translucency_", "arcus_job_get_translucency_"),
 }
 
 

@@ -314,6 +314,45 @@ class DipoleStruct(ctypes.Structure):
     ]
 
 
+class DirectionalLightStruct(ctypes.Structure):
+    _fields_ = [
+        ("direction", c_double * 3),
+        ("irradiance", c_double * 3),
+    ]
+
+
+class TranslucencyRenderParamsStruct(ctypes.Structure):
+    _fields_ = [
+        ("camera", CameraStruct),
+        ("ortho_height", c_double),
+        ("mm_per_unit", c_double),
+        ("exit", c_int32),
+        ("profile_scale", c_double),
+        ("profile_scaling", c_int32),
+        ("sample_spacing_mm", c_double),
+        ("gather", c_int32),
+        ("max_solid_angle", c_double),
+        ("highlight_deg", c_double),
+        ("progress", PROGRESS_CALLBACK),
+        ("progress_user", c_void_p),
+    ]
+
+
+class TranslucencyRenderStatsStruct(ctypes.Structure):
+    _fields_ = [
+        ("width", c_uint32),
+        ("height", c_uint32),
+        ("samples", c_uint64),
+        ("sample_spacing_mm", c_double),
+        ("surface_area_mm2", c_double),
+        ("covered_pixels", c_uint64),
+        ("tree_nodes", c_uint64),
+        ("mean_visits", c_double),
+        ("irradiance_seconds", c_double),
+        ("gather_seconds", c_double),
+    ]
+
+
 class DipoleTermsStruct(ctypes.Structure):
     _fields_ = [
         ("albedo", c_double * 3),

@@ -9,19 +9,27 @@ R_d per mm², three channels R, G, B.
 >>> marble.total_reflectance          # (3,) closed form, = ∫ 2πr R_d(r) dr
 >>> marble.Rd([0.5, 1.0, 2.0])        # (3, 3): distances × channels
 >>> Dipole.from_reflectance(marble.total_reflectance, marble.diffuse_length, eta=1.5)
+>>> img = render(marble, "bunny.ply", [((0, 1, 1), 1.0)], {"position": (0, 0, 5), "look_at": (0, 0, 0)},
+...              mm_per_unit=20, out="bunny.exr")   # eq. 3.6–3.8; img.image is (height, width, 3)
 """
 
+import os
+import time
 import warnings
-from ctypes import byref, c_char_p, c_double
+from ctypes import byref, c_char_p, c_double, c_float, c_size_t, c_uint8, c_uint32, c_uint64, c_void_p
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from . import _lib
-from ._args import to_float, to_real_array
+from . import _meshes, image
+from ._advance import _check_progress
+from ._args import to_choice, to_float, to_int, to_path, to_real_array, to_vec3
 from ._errors import ArgumentError
 from ._lib import lib
+from .context import _owned_context
 
-__all__ = ["Dipole", "materials", "henyey_greenstein", "fresnel_reflectance"]
+__all__ = ["Dipole", "materials", "henyey_greenstein", "fresnel_reflectance", "render", "Rendered", "read_mesh"]
 
 
 def _check(code):
@@ -123,13 +131,11 @@ class Dipole:
         """R_d per mm² at distances ``r`` mm (any shape): an array of r's shape + (3,).
         ``scale`` stretches the profile (thesis §5.2): "energy" R_d(r/s)/s² keeps the
         total reflectance, "thesis" R_d(r/s) multiplies it by s²."""
-        modes = {"energy": 0, "thesis": 1}
-        if scaling not in modes:
-            raise ArgumentError("scaling must be 'energy' or 'thesis', got %r" % (scaling,))
         distances = to_real_array(r, "r")
         flat = np.ascontiguousarray(distances.reshape(-1))
         out = np.empty((flat.size, 3))
-        _check(lib.arcus_translucency_dipole_profile(byref(self._struct), to_float(scale, "scale"), modes[scaling],
+        _check(lib.arcus_translucency_dipole_profile(byref(self._struct), to_float(scale, "scale"),
+                                                     to_choice(scaling, "scaling", _SCALINGS),
                                                      flat.size, _lib.ptr(flat), _lib.ptr(out)))
         return out.reshape(distances.shape + (3,))
 
@@ -156,3 +162,172 @@ def fresnel_reflectance(cos_i, n1, n2):
     _check(lib.arcus_translucency_fresnel_reflectance(to_float(cos_i, "cos_i"), to_float(n1, "n1"),
                                                       to_float(n2, "n2"), byref(out)))
     return out.value
+
+
+# ---- rendering ------------------------------------------------------------------------
+
+_EXITS = {"thesis": 0, "normalized": 1}
+_SCALINGS = {"energy": 0, "thesis": 1}
+_GATHERS = {"hierarchical": 0, "brute_force": 1}
+_CAMERA_KEYS = ("position", "look_at", "up", "vfov_deg", "width", "height")
+
+
+@dataclass(eq=False)  # element-wise array comparison has no single truth value
+class Rendered:
+    """A render of :func:`render`: ``image`` (height, width, 3) float32 linear RGB
+    radiance (0 where the mesh is not seen), ``subsurface`` its eq. 3.6 part alone,
+    ``covered`` (height, width) bool, ``stats`` (samples, their spacing in mm, the
+    surface's area, covered pixels, tree nodes, nodes visited per pixel, seconds per
+    stage), ``features`` (the kernel features compiled) and ``seconds``."""
+    image: np.ndarray
+    subsurface: np.ndarray
+    covered: np.ndarray
+    stats: dict = field(default_factory=dict)
+    features: frozenset = frozenset()
+    seconds: float = 0.0
+
+
+def read_mesh(path, context=None):
+    """The mesh file at ``path`` (OBJ, PLY, OFF, STL) as ``(vertices (N, 3) float64,
+    triangles (M, 3) uint32)``, read as every engine reads it."""
+    with _owned_context(context) as ctx:
+        handle = c_void_p()
+        ctx._check(lib.arcus_mesh_load(ctx._handle, to_path(path, "path"), byref(handle)))
+        try:
+            nv, nt = c_size_t(), c_size_t()
+            ctx._check(lib.arcus_mesh_get_counts(handle, byref(nv), byref(nt)))
+            vertices = np.empty((nv.value, 3))
+            triangles = np.empty((nt.value, 3), np.uint32)
+            ctx._check(lib.arcus_mesh_get_arrays(handle, _lib.ptr(vertices), _lib.ptr(triangles, c_uint32)))
+        finally:
+            lib.arcus_mesh_release(handle)
+    return vertices, triangles
+
+
+def _lights(lights):
+    """``lights`` as a ctypes array: a list of (direction, irradiance) pairs or dicts with
+    those keys; irradiance is one number or R, G, B."""
+    if isinstance(lights, (tuple, dict)) and not (isinstance(lights, tuple) and lights and
+                                                  isinstance(lights[0], (tuple, list, dict, np.ndarray))):
+        lights = [lights]
+    if not isinstance(lights, (list, tuple)) or not lights:
+        raise ArgumentError("lights must be a non-empty list of (direction, irradiance) pairs, got %r" % (lights,))
+    array = (_lib.DirectionalLightStruct * len(lights))()
+    for i, light in enumerate(lights):
+        if isinstance(light, dict):
+            unknown = set(light) - {"direction", "irradiance"}
+            if unknown or "direction" not in light:
+                raise ArgumentError("lights[%d] takes 'direction' and 'irradiance', got %s" % (i, sorted(light)))
+            direction, irradiance = light["direction"], light.get("irradiance", 1.0)
+        elif isinstance(light, (tuple, list)) and len(light) == 2:
+            direction, irradiance = light
+        else:
+            raise ArgumentError("lights[%d] must be a (direction, irradiance) pair or a dict, got %r" % (i, light))
+        array[i].direction[:] = list(to_vec3(direction, "lights[%d].direction" % i))
+        array[i].irradiance[:] = list(_rgb(irradiance, "lights[%d].irradiance" % i))
+    return array
+
+
+def _camera(params, camera):
+    """The camera dict (any of position, look_at, up, vfov_deg, width, height) over the
+    defaults of ``arcus_translucency_render_params_init``."""
+    if camera is None:
+        return
+    if not isinstance(camera, dict):
+        raise ArgumentError("camera must be a dict with keys among %s, got %r" % (", ".join(_CAMERA_KEYS), camera))
+    unknown = sorted(set(camera) - set(_CAMERA_KEYS))
+    if unknown:
+        raise ArgumentError("camera: unknown key(s) %s (known: %s)" % (", ".join(unknown), ", ".join(_CAMERA_KEYS)))
+    for key in ("position", "look_at", "up"):
+        if key in camera:
+            getattr(params.camera, key)[:] = list(to_vec3(camera[key], "camera['%s']" % key))
+    if "vfov_deg" in camera:
+        params.camera.vfov_deg = to_float(camera["vfov_deg"], "camera['vfov_deg']")
+    for key in ("width", "height"):
+        if key in camera:
+            setattr(params.camera, key, to_int(camera[key], "camera['%s']" % key, 1, 16384))
+
+
+def render(dipole, mesh, lights, camera=None, *, ortho_height=0.0, mm_per_unit=1.0, exit="thesis",
+           profile_scale=1.0, profile_scaling="energy", sample_spacing_mm=0.0, gather="hierarchical",
+           max_solid_angle=None, highlight_deg=10.0, out=None, exposure=None, progress=None, context=None):
+    """Renders ``mesh`` (a file path, or ``(vertices, triangles)``), made of ``dipole``
+    (a :class:`Dipole`), under directional ``lights`` ([(direction toward the light,
+    irradiance (one number or R, G, B)), ...]) seen by ``camera`` (a dict of position,
+    look_at, up, vfov_deg, width, height in mesh units; defaults: 256², from (0, 0, 5)):
+    thesis eq. 3.6–3.8, a :class:`Rendered`.
+
+    ``ortho_height`` > 0 makes the view orthographic, that tall; ``mm_per_unit`` says how
+    long a mesh unit is.  ``exit``: "thesis" (eq. 3.6 as written) or "normalized"
+    (divided by 1 − 2·FM1, energy-conserving); ``profile_scale``/``profile_scaling``
+    stretch the profile (§5.2); ``sample_spacing_mm`` (0: 1/σ′_t) spaces the irradiance
+    samples; ``gather``: "hierarchical" (Jensen & Buhler 2002, nodes under
+    ``max_solid_angle`` sr taken whole) or "brute_force" (the reference);
+    ``highlight_deg``: the Phong highlight's angle b (0: none).  ``out``: a path or
+    paths to write the image to, in the format each extension names: .exr and .hdr keep
+    the radiance, .png and .jpg are scaled by ``exposure`` (default: the 99.5th
+    percentile of the object's pixels to 0.9) and sRGB-encoded.
+    """
+    if not isinstance(dipole, Dipole):
+        raise ArgumentError("dipole must be an arcus.translucency.Dipole, got %r" % (dipole,))
+    _check_progress(progress)
+    light_array = _lights(lights)
+    params = _lib.TranslucencyRenderParamsStruct()
+    _check(lib.arcus_translucency_render_params_init(byref(params)))
+    _camera(params, camera)
+    params.ortho_height = to_float(ortho_height, "ortho_height")
+    params.mm_per_unit = to_float(mm_per_unit, "mm_per_unit")
+    params.exit = to_choice(exit, "exit", _EXITS)
+    params.profile_scale = to_float(profile_scale, "profile_scale")
+    params.profile_scaling = to_choice(profile_scaling, "profile_scaling", _SCALINGS)
+    params.sample_spacing_mm = to_float(sample_spacing_mm, "sample_spacing_mm")
+    params.gather = to_choice(gather, "gather", _GATHERS)
+    if max_solid_angle is not None:
+        params.max_solid_angle = to_float(max_solid_angle, "max_solid_angle")
+    params.highlight_deg = to_float(highlight_deg, "highlight_deg")
+    outputs = [] if out is None else [out] if isinstance(out, (str, os.PathLike)) else list(out)
+    for i, path in enumerate(outputs):
+        to_path(path, "out[%d]" % i)
+    with _owned_context(context) as ctx:
+        mesh_handle = c_void_p()
+        if isinstance(mesh, (str, os.PathLike)):
+            ctx._check(lib.arcus_mesh_load(ctx._handle, to_path(mesh, "mesh"), byref(mesh_handle)))
+        elif isinstance(mesh, (tuple, list)) and len(mesh) == 2:
+            vertices, triangles = _meshes.mesh_arrays(mesh[0], mesh[1], "mesh ")
+            ctx._check(_meshes.create(ctx._handle, vertices, triangles, byref(mesh_handle)))
+        else:
+            raise ArgumentError("mesh must be a file path or a (vertices, triangles) pair, got %r" % (mesh,))
+        t0 = time.perf_counter()
+        try:
+            def start(callback, job_out):
+                params.progress = callback
+                return lib.arcus_translucency_render(ctx._handle, mesh_handle, byref(dipole._struct),
+                                                     len(light_array), light_array, byref(params), job_out)
+
+            def read(job):
+                stats = _lib.TranslucencyRenderStatsStruct()
+                ctx._check(lib.arcus_job_get_translucency_stats(job, byref(stats)))
+                h, w = stats.height, stats.width
+                rgb, sub = np.empty((h, w, 3), np.float32), np.empty((h, w, 3), np.float32)
+                covered = np.empty((h, w), np.uint8)
+                ctx._check(lib.arcus_job_get_translucency_image(job, _lib.ptr(rgb, c_float), _lib.ptr(sub, c_float),
+                                                                _lib.ptr(covered, c_uint8)))
+                bits = c_uint64()
+                ctx._check(lib.arcus_job_get_features(job, byref(bits)))
+                named = {name: getattr(stats, name) for name, _ in stats._fields_ if name not in ("width", "height")}
+                return rgb, sub, covered.astype(bool), named, _lib.feature_names(bits.value)
+
+            rgb, sub, covered, stats, features = ctx._run_job(start, progress, False, "arcus_translucency_render",
+                                                              reader=read)
+        finally:
+            lib.arcus_mesh_release(mesh_handle)
+    if exposure is None:
+        seen = rgb[covered].max(axis=1) if covered.any() else np.zeros(1)
+        top = float(np.percentile(seen, 99.5))
+        exposure = 0.9 / top if top > 0 else 1.0
+    exposure = to_float(exposure, "exposure")
+    for path in outputs:
+        eight_bit = os.fspath(path).lower().endswith((".png", ".jpg", ".jpeg"))
+        image.write(path, rgb * exposure if eight_bit else rgb)
+    return Rendered(image=rgb, subsurface=sub, covered=covered, stats=stats, features=features,
+                    seconds=time.perf_counter() - t0)

@@ -1,6 +1,7 @@
 """The ``arcus`` command: one entry point to every engine (docs/cli.md).
 
     arcus render SCENE [-o OUT ...] [--quick]   an image of any engine's scene
+    arcus bssrdf render MESH [--material M] [--light ...]   a translucent object (dipole)
     arcus trace | view | ocean | rainbow | sweep | bench | info | gallery
 
 Bad input (a scene's error names the file and the key path) prints one line and exits
@@ -11,17 +12,18 @@ import argparse
 import sys
 
 from .. import __version__
-from . import gallery, info, render, tools
+from . import bssrdf, gallery, info, render, tools
 
 EXIT_BAD_INPUT = 2
 
 
 def parser():
     p = argparse.ArgumentParser(prog="arcus", description="Light transport in participating media: curved light "
-                                "and mirages, underwater light, rainbows and halos (docs/cli.md).")
+                                "and mirages, underwater light, rainbows and halos, translucency (docs/cli.md).")
     p.add_argument("--version", action="version", version="arcus %s" % __version__)
     sub = p.add_subparsers(dest="command", metavar="COMMAND", required=True)
     render.add(sub)
+    bssrdf.add(sub)
     tools.add(sub)
     info.add(sub)
     gallery.add(sub)

@@ -1,0 +1,143 @@
+"""arcus bssrdf render MESH: a translucent object through the dipole (thesis eq. 3.6–3.8,
+docs/translucency.md), lit by directional lights, framed automatically unless a camera
+is given; the output's extension picks the format (.png, .jpg, .exr, .hdr)."""
+
+import argparse
+import time
+from pathlib import Path
+
+import numpy as np
+
+from .. import translucency
+from .._errors import ArgumentError
+from ..context import Context
+from ..progress import Progress
+from . import resources
+from .render import FORMATS, _device, _raw
+
+# --quick: a preview in seconds: a quarter of the pixels a side (at least 64) and
+# samples twice as far apart.
+QUICK_SCALE = 4
+
+
+def add(sub):
+    p = sub.add_parser("bssrdf", help="translucent objects: render through the dipole BSSRDF",
+                       description=__doc__, formatter_class=_raw())
+    verbs = p.add_subparsers(dest="verb", metavar="VERB", required=True)
+    r = verbs.add_parser("render", help="render a mesh of a translucent material", description=__doc__,
+                         formatter_class=_raw(),
+                         epilog="examples:\n  arcus bssrdf render torus --material skin1 --mm-per-unit 20 -o torus.png\n"
+                                "  arcus bssrdf render my.ply --sigma-a 0.01 0.02 0.05 --sigma-s-prime 1 1.2 1.5 "
+                                "--light 0 1 1 --light -1 0 0.3 0.3 0.3 0.3 -o my.exr")
+    r.add_argument("mesh", help="a mesh file (.obj .ply .off .stl) or a bundled mesh's name (icosphere, torus, tower)")
+    r.add_argument("--material", help="one of Jensen et al. 2001's: %s (default marble)" %
+                   ", ".join(translucency.materials()))
+    r.add_argument("--sigma-a", type=float, nargs=3, metavar=("R", "G", "B"), help="absorption, mm^-1")
+    r.add_argument("--sigma-s-prime", type=float, nargs=3, metavar=("R", "G", "B"), help="reduced scattering, mm^-1")
+    r.add_argument("--eta", type=float, help="relative refractive index (default 1.3, or the material's)")
+    r.add_argument("--light", type=float, nargs="+", action="append", metavar="X",
+                   help="a directional light: DX DY DZ toward it, then an irradiance (one value or R G B; default "
+                        "1); may be given several times (default: one from (1, 1, 1))")
+    r.add_argument("--mm-per-unit", type=float, default=10.0, help="how long a mesh unit is in mm (default 10)")
+    r.add_argument("--position", type=float, nargs=3, metavar=("X", "Y", "Z"),
+                   help="the camera's position (default: on +z, far enough to see the whole mesh)")
+    r.add_argument("--look-at", type=float, nargs=3, metavar=("X", "Y", "Z"), help="default: the mesh's centre")
+    r.add_argument("--up", type=float, nargs=3, metavar=("X", "Y", "Z"), help="default: +y")
+    r.add_argument("--vfov", type=float, default=30.0, help="vertical field of view, degrees (default 30)")
+    r.add_argument("--ortho", action="store_true", help="an orthographic view framing the mesh, as the thesis' "
+                   "photographs")
+    r.add_argument("--width", type=int, default=256)
+    r.add_argument("--height", type=int, default=256)
+    r.add_argument("--exit", choices=("thesis", "normalized"), default="thesis",
+                   help="eq. 3.6's exit term as written, or divided by 1 − 2·FM1 (energy-conserving)")
+    r.add_argument("--gather", choices=("hierarchical", "brute_force"), default="hierarchical")
+    r.add_argument("--highlight", type=float, default=10.0, help="the Phong highlight's angle b, degrees (0: none)")
+    r.add_argument("--spacing", type=float, default=0.0, help="irradiance samples' spacing, mm (0: 1/σ′_t)")
+    r.add_argument("--quick", action="store_true", help="a preview in seconds: fewer pixels, coarser samples")
+    r.add_argument("-o", "--output", action="append", metavar="OUT",
+                   help="an image to write (%s); may be given several times (default: MESH.png here)"
+                        % ", ".join(FORMATS))
+    r.add_argument("--device", help="an OpenCL device: an index or part of its name")
+    r.add_argument("--quiet", action="store_true", help="no progress bar")
+    r.set_defaults(run=run_render)
+
+
+def bundled_mesh(name):
+    """A mesh file: the path given, or one of data/meshes by its name without extension."""
+    if Path(name).is_file():
+        return Path(name)
+    meshes = resources.share_dir() / "data" / "meshes"
+    found = sorted(meshes.glob(name + ".*")) if "/" not in name else []
+    found = [f for f in found if f.suffix.lower() in (".obj", ".ply", ".off", ".stl")]
+    if len(found) == 1:
+        return found[0]
+    raise ArgumentError("%s: neither a mesh file nor a bundled mesh (%s)" % (
+        name, ", ".join(sorted(p.stem for p in meshes.glob("*.obj")) + sorted(p.stem for p in meshes.glob("*.ply")))))
+
+
+def dipole_of(args):
+    if args.material and (args.sigma_a or args.sigma_s_prime):
+        raise ArgumentError("--material or --sigma-a/--sigma-s-prime, not both")
+    if bool(args.sigma_a) != bool(args.sigma_s_prime):
+        raise ArgumentError("--sigma-a and --sigma-s-prime go together")
+    if args.sigma_a:
+        return translucency.Dipole(args.sigma_a, args.sigma_s_prime, 1.3 if args.eta is None else args.eta)
+    d = translucency.Dipole.from_material(args.material or "marble")
+    return d if args.eta is None else translucency.Dipole(d.sigma_a, d.sigma_s_prime, args.eta)
+
+
+def lights_of(args):
+    if not args.light:
+        return [((1.0, 1.0, 1.0), 1.0)]
+    lights = []
+    for i, values in enumerate(args.light):
+        if len(values) not in (3, 4, 6):
+            raise ArgumentError("--light #%d: give DX DY DZ, then nothing, one irradiance or R G B (got %d numbers)"
+                                % (i + 1, len(values)))
+        lights.append((values[:3], values[3:] if len(values) == 6 else values[3] if len(values) == 4 else 1.0))
+    return lights
+
+
+def camera_of(args, vertices):
+    """The camera: what was given, the rest framing the mesh's bounding sphere."""
+    lo, hi = vertices.min(axis=0), vertices.max(axis=0)
+    centre, radius = (lo + hi) / 2, max(float(np.linalg.norm(hi - lo)) / 2, 1e-12)
+    look_at = np.array(args.look_at if args.look_at else centre, float)
+    fit = radius / np.sin(np.radians(args.vfov) / 2) * 1.1  # the whole sphere within the view, 10% spare
+    position = np.array(args.position if args.position else look_at + [0, 0, fit], float)
+    camera = {"position": position, "look_at": look_at, "up": args.up or (0, 1, 0), "vfov_deg": args.vfov,
+              "width": args.width, "height": args.height}
+    return camera, 2.2 * radius if args.ortho else 0.0
+
+
+def run_render(args):
+    for flag in ("width", "height"):
+        if not 1 <= getattr(args, flag) <= 16384:
+            raise ArgumentError("--%s: expected 1..16384, got %d" % (flag, getattr(args, flag)))
+    mesh_path = bundled_mesh(args.mesh)
+    dipole = dipole_of(args)
+    lights = lights_of(args)
+    if args.quick:
+        args.width, args.height = (max(64, s // QUICK_SCALE) for s in (args.width, args.height))
+    outputs = [Path(o) for o in (args.output or [mesh_path.stem + ".png"])]
+    for o in outputs:
+        if o.suffix.lower() not in FORMATS:
+            raise ArgumentError("-o %s: unknown image format %r (expected %s)" % (o, o.suffix, ", ".join(FORMATS)))
+        o.parent.mkdir(parents=True, exist_ok=True)
+    started = time.monotonic()
+    with Context(_device(args.device)) as ctx:
+        vertices, _ = translucency.read_mesh(mesh_path, context=ctx)
+        camera, ortho = camera_of(args, vertices)
+        spacing = args.spacing
+        if args.quick and spacing == 0:
+            spacing = 2 / float(np.max(dipole.sigma_t_prime))
+        with Progress("rendering " + mesh_path.stem, quiet=args.quiet) as bar:
+            result = translucency.render(dipole, mesh_path, lights, camera, ortho_height=ortho,
+                                         mm_per_unit=args.mm_per_unit, exit=args.exit, gather=args.gather,
+                                         highlight_deg=args.highlight, sample_spacing_mm=spacing,
+                                         out=outputs, progress=bar if bar.shown else None, context=ctx)
+    s = result.stats
+    print("%s: %d × %d, %d irradiance samples %.3g mm apart, %s gather in %.1f s; wrote %s" % (
+        mesh_path.stem, args.width, args.height, s["samples"], s["sample_spacing_mm"], args.gather,
+        time.monotonic() - started, ", ".join(str(o.resolve()) for o in outputs)))
+    return 0
