@@ -174,6 +174,89 @@ ARCUS_API arcus_status arcus_job_get_translucency_stats(arcus_job_t* job, arcus_
 ARCUS_API arcus_status arcus_job_get_translucency_image(arcus_job_t* job, float* rgb, float* subsurface,
                                                         uint8_t* covered);
 
+
+/* ---- estimation from one HDR photograph (thesis §3.3.1; Muñoz et al. 2011) -----------
+ * Given a photograph of a closed mesh of one homogeneous medium, its camera and its
+ * directional lights, the profile R_d as m basis functions: per pixel i of the
+ * equations (the object's pixels less the highlights and the matte's rim),
+ *   L_i / ((1/π) F_t(η, c·n_i)) = Σ_h w_h Σ_j [E_j ΔA_j B_h(r_ij) + E_b,j ΔA_b,j B_h(r_b,ij)]
+ * over the sources j (every object pixel's front and back point, eq. 3.10–3.12), solved
+ * in the least-squares sense per channel (QMR on the normal equations, Jacobi
+ * preconditioned, near-empty columns dropped), then fitted by a dipole. */
+#define ARCUS_FEATURE_TRANSLUCENCY_HISTOGRAM (UINT64_C(1) << 50) /* the distance histograms of eq. 3.16 */
+
+/* The basis functions B_h of eq. 3.14 over [0, r_max) (Table 3.2's families). */
+typedef enum arcus_profile_basis {
+  ARCUS_BASIS_PIECEWISE_CONSTANT = 0 /* m equal bins: the thesis' choice (default)     */
+} arcus_profile_basis;
+
+/* What the dipole is fitted to, per channel, by Levenberg–Marquardt (src/translucency/fit.h). */
+typedef enum arcus_profile_fit {
+  ARCUS_FIT_IMAGE = 0,  /* the pixels it predicts through the cached histograms (default)  */
+  ARCUS_FIT_PROFILE = 1 /* the piecewise-constant profile's bins, as the thesis does        */
+} arcus_profile_fit;
+
+typedef struct arcus_translucency_estimate_params {
+  arcus_camera camera;       /* as for a render: mesh units; the photo's size is its own */
+  double ortho_height;       /* > 0: orthographic (the thesis' photographs); 0: pinhole   */
+  double mm_per_unit;        /* > 0                                                     */
+  double eta;                /* the medium's assumed index (1.3, as the thesis)           */
+  int32_t exit;              /* arcus_exit_term the photo is taken to follow (THESIS)      */
+  uint32_t basis_count;      /* m, 2..64 (24)                                            */
+  int32_t basis;             /* arcus_profile_basis                                     */
+  double r_max_mm;           /* the profile's reach; 0: the object's bounding diagonal     */
+  uint32_t max_side;         /* the photo is box-filtered down by whole factors until its
+                                longer side is at most this (200, as the thesis)          */
+  int32_t remove_highlights; /* 1: drop pixels above the histogram's cut (default 1)      */
+  int32_t subtract_minimum;  /* 1: subtract the darkest object pixel from all (default 1) */
+  int32_t fit;               /* arcus_profile_fit                                        */
+  arcus_progress_callback progress; /* after each slice of the histograms; may be NULL   */
+  void* progress_user;
+} arcus_translucency_estimate_params;
+
+/* Defaults: the render defaults' camera, 1 mm per unit, η 1.3, 24 piecewise-constant
+ * functions up to the object's diagonal, 200 pixels a side, highlights removed and the
+ * minimum subtracted (§3.3.1). */
+ARCUS_API arcus_status arcus_translucency_estimate_params_init(arcus_translucency_estimate_params* params);
+
+/* Estimates from `photo` (width × height × 3 floats, linear RGB radiance, top row first:
+ * an HDR photograph's pixels) of `mesh` under `lights`; `matte` (width × height bytes,
+ * non-zero: the object) may be NULL, when the mesh's projection is the matte.  Refused,
+ * naming the reason: a NaN, infinite or negative pixel; an object whose pixels have no
+ * light; a matte that covers no pixel of the mesh. */
+ARCUS_API arcus_status arcus_translucency_estimate(arcus_context_t* ctx, arcus_mesh_t* mesh, uint32_t width,
+                                                   uint32_t height, const float* photo, const uint8_t* matte,
+                                                   size_t light_count, const arcus_directional_light* lights,
+                                                   const arcus_translucency_estimate_params* params,
+                                                   arcus_job_t** job);
+
+typedef struct arcus_translucency_estimate_result {
+  uint32_t width, height;        /* the downscaled photo's size                            */
+  uint32_t object_pixels;        /* |𝕆|: sources                                          */
+  uint32_t equation_pixels;      /* |𝕀|: equations                                        */
+  double highlight_cut;          /* the luminance above which pixels were dropped (inf: none) */
+  double minimum_subtracted[3];  /* what was subtracted (0 when not asked)                */
+  double r_max_mm;               /* the profile's reach                                   */
+  uint32_t basis_count;
+  arcus_dipole dipole;           /* the dipole fitted to the profile                      */
+  arcus_dipole_terms terms;      /* and what follows from it                              */
+  int32_t iterations[3];         /* QMR, per channel                                     */
+  double residual[3];            /* QMR's relative residual of the normal equations       */
+  double condition_a[3];         /* 2-norm condition number of A's kept columns           */
+  double condition_normal[3];    /* of AᵀA                                                */
+  uint32_t dropped_columns[3];   /* columns left out as near-empty                         */
+  double fit_error[3];           /* the fit's RMS residual over the data's RMS              */
+  double geometry_seconds;       /* camera rays, back points, irradiance maps             */
+  double histogram_seconds;      /* the kernel of eq. 3.16                                 */
+  double solve_seconds;          /* normal equations, QMR, condition numbers, the fit      */
+} arcus_translucency_estimate_result;
+
+ARCUS_API arcus_status arcus_job_get_translucency_estimate(arcus_job_t* job,
+                                                           arcus_translucency_estimate_result* result);
+/* The estimated profile: edges (basis_count + 1 distances, mm) and weights (basis_count
+ * × 3: R_d per mm² on each bin, per channel); either pointer may be NULL. */
+ARCUS_API arcus_status arcus_job_get_translucency_profile(arcus_job_t* job, double* edges, double* weights);
+
 #ifdef __cplusplus
 }
 #endif

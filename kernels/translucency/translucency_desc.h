@@ -35,4 +35,16 @@
   X(__global const bvh_node*, nodes) X(__global const REAL*, clusters) X(const REAL, max_solid_angle) \
   X(__global uint*, visits) X(const uint, first) X(const uint, count)
 
+/* The distance histograms of the estimate (histogram.cl, ARCUS_USE_HISTOGRAM; thesis
+ * eq. 3.16): per equation point (a work-item each), Σ over the sources of their weights
+ * (E·ΔA per channel) by the bin of their distance, `bins` of `bin_width` mm from 0;
+ * sources farther than the last bin add nothing.  histograms: per row bins × 4 REALs,
+ * bin-major: the three channels' sums, then Σ (w_R + w_G + w_B)·r (where in its bin the
+ * weight lies). */
+#define ARCUS_MAX_HISTOGRAM_BINS 256
+#define ARCUS_TRANSLUCENCY_HISTOGRAM_ARGS(X)                                                          \
+  X(__global const REAL*, rows) X(__global const REAL*, sources) X(__global const REAL*, weights)      \
+  X(__global REAL*, histograms) X(const uint, source_count) X(const uint, bins) X(const REAL, bin_width) \
+  X(const uint, first) X(const uint, count)
+
 #endif /* ARCUS_TRANSLUCENCY_DESC_H */

@@ -11,6 +11,7 @@
 #include "geometry/mesh_handle.h"
 #include "translucency/dipole.h"
 #include "translucency/materials.h"
+#include "translucency/estimate.h"
 #include "translucency/render.h"
 
 using namespace arcus;
@@ -47,22 +48,7 @@ arcus_status arcus_translucency_dipole_get_terms(const arcus_dipole* dipole, arc
   return without_context([&] {
     require_pointer(terms, "terms");
     check_dipole(dipole);
-    arcus_dipole_terms out{};
-    for (int c = 0; c < 3; ++c) {
-      const Terms t = translucency::terms(channel_of(*dipole, c));
-      out.albedo[c] = t.albedo;
-      out.sigma_t_prime[c] = t.sigma_t_prime;
-      out.sigma_tr[c] = t.sigma_tr;
-      out.diffuse_length[c] = t.sigma_tr > 0 ? 1 / t.sigma_tr : INFINITY;
-      out.z_r[c] = t.z_r;
-      out.z_v[c] = t.z_v;
-      out.total_reflectance[c] = total_reflectance(t.albedo, dipole->eta);
-      out.diffusive[c] = t.albedo >= 0.5;
-    }
-    out.f_dr = diffuse_fresnel_reflectance(dipole->eta);
-    out.a = boundary_mismatch(dipole->eta);
-    out.exit_transmittance = exit_transmittance(dipole->eta);
-    *terms = out;
+    *terms = dipole_terms(*dipole);
   });
 }
 
@@ -224,6 +210,62 @@ arcus_status arcus_job_get_translucency_image(arcus_job_t* job, float* rgb, floa
     copy_out(j->rgb, rgb);
     copy_out(j->subsurface, subsurface);
     copy_out(j->covered, covered);
+  });
+}
+
+arcus_status arcus_translucency_estimate_params_init(arcus_translucency_estimate_params* params) {
+  return without_context([&] {
+    require_pointer(params, "params");
+    arcus_translucency_render_params render{};
+    arcus_translucency_render_params_init(&render);
+    arcus_translucency_estimate_params p{};
+    p.camera = render.camera;
+    p.mm_per_unit = 1;
+    p.eta = 1.3;
+    p.exit = ARCUS_EXIT_THESIS;
+    p.basis_count = 24;
+    p.basis = ARCUS_BASIS_PIECEWISE_CONSTANT;
+    p.max_side = 200;
+    p.remove_highlights = 1;
+    p.subtract_minimum = 1;
+    *params = p;
+  });
+}
+
+arcus_status arcus_translucency_estimate(arcus_context_t* ctx, arcus_mesh_t* mesh, uint32_t width, uint32_t height,
+                                         const float* photo, const uint8_t* matte, size_t light_count,
+                                         const arcus_directional_light* lights,
+                                         const arcus_translucency_estimate_params* params, arcus_job_t** job) {
+  return on<arcus_context_s>(ctx, kContextHandle, "ctx", [&](arcus_context_s*, std::string* message) {
+    require_pointer(job, "job");
+    *job = nullptr;
+    const auto* m = object_of<arcus_mesh_s>(ctx, mesh, geometry::kMeshHandle, "mesh");
+    require_pointer(params, "params");
+    require_pointer(photo, "photo");
+    require(light_count <= 64, "light_count = " + std::to_string(light_count) + " is not 1..64");
+    if (light_count > 0) require_pointer(lights, "lights");
+    const std::vector<arcus_directional_light> list(lights, lights + light_count);
+    bool cancelled = false;
+    auto j = translucency::estimate(ctx, m->mesh, width, height, photo, matte, list, *params, &cancelled);
+    retain_context(ctx);  // the job's reference
+    *job = j.release();
+    if (!cancelled) return ARCUS_SUCCESS;
+    *message = "the progress callback cancelled the estimate: the profile is incomplete";
+    return ARCUS_ERROR_CANCELLED;
+  });
+}
+
+arcus_status arcus_job_get_translucency_estimate(arcus_job_t* job, arcus_translucency_estimate_result* result) {
+  return on_job<EstimateJob>(job, "a translucency estimate", [&](EstimateJob* j) {
+    require_pointer(result, "result");
+    *result = j->result;
+  });
+}
+
+arcus_status arcus_job_get_translucency_profile(arcus_job_t* job, double* edges, double* weights) {
+  return on_job<EstimateJob>(job, "a translucency estimate", [&](EstimateJob* j) {
+    copy_out(j->edges, edges);
+    copy_out(j->weights, weights);
   });
 }
 

@@ -38,6 +38,14 @@ double diffuse_reflectance(const Terms& t, double r) {
   return arcus_dipole_rd(r * r, t.z_r, t.z_v, t.sigma_tr, t.albedo / (4 * M_PI));
 }
 
+double reflectance_within(const Terms& t, double radius) {
+  auto source = [&](double z) {
+    const double d = std::sqrt(radius * radius + z * z);
+    return z * (std::exp(-t.sigma_tr * z) / z - std::exp(-t.sigma_tr * d) / d);
+  };
+  return t.albedo / 2 * (source(t.z_r) + source(t.z_v));
+}
+
 double total_reflectance(double albedo, double eta) {
   const double s = std::sqrt(3 * (1 - albedo));
   return albedo / 2 * (1 + std::exp(-4.0 / 3.0 * boundary_mismatch(eta) * s)) * std::exp(-s);
@@ -75,6 +83,25 @@ double henyey_greenstein(double g, double cos_theta) {
   // neither integrates to 1 nor has mean cosine g.  This is the standard form.
   const double denominator = 1 + g * g - 2 * g * cos_theta;
   return (1 - g * g) / (4 * M_PI * denominator * std::sqrt(denominator));
+}
+
+arcus_dipole_terms dipole_terms(const arcus_dipole& d) {
+  arcus_dipole_terms out{};
+  for (int c = 0; c < 3; ++c) {
+    const Terms t = terms(Channel{d.sigma_a[c], d.sigma_s_prime[c], d.eta});
+    out.albedo[c] = t.albedo;
+    out.sigma_t_prime[c] = t.sigma_t_prime;
+    out.sigma_tr[c] = t.sigma_tr;
+    out.diffuse_length[c] = t.sigma_tr > 0 ? 1 / t.sigma_tr : INFINITY;
+    out.z_r[c] = t.z_r;
+    out.z_v[c] = t.z_v;
+    out.total_reflectance[c] = total_reflectance(t.albedo, d.eta);
+    out.diffusive[c] = t.albedo >= 0.5;
+  }
+  out.f_dr = diffuse_fresnel_reflectance(d.eta);
+  out.a = boundary_mismatch(d.eta);
+  out.exit_transmittance = exit_transmittance(d.eta);
+  return out;
 }
 
 void check_channel(const Channel& c, const std::string& where, int channel) {

@@ -7,6 +7,8 @@
 
 #include <string>
 
+#include "arcus/arcus_translucency.h"
+
 namespace arcus::translucency {
 
 // One channel of a medium: absorption σ_a >= 0, reduced scattering σ_s′ > 0, and η.
@@ -32,6 +34,10 @@ Terms terms(const Channel& c);
 // once for all the distances a caller evaluates).
 double diffuse_reflectance(const Terms& t, double r);
 
+// ∫₀^ρ 2πr R_d(r) dr in closed form: (α′/2) Σ_sources z(e^{−σ_tr z}/z − e^{−σ_tr d}/d),
+// d = sqrt(ρ² + z²) (each source's term integrates to −e^{−σ_tr d}/d in d).
+double reflectance_within(const Terms& t, double radius);
+
 // ∫ 2πr R_d(r) dr in closed form: (α′/2)(1 + e^{−(4/3)A s}) e^{−s}, s = sqrt(3(1 − α′)).
 double total_reflectance(double albedo, double eta);
 
@@ -48,6 +54,9 @@ double henyey_greenstein(double g, double cos_theta);
 
 // The exact unpolarised Fresnel reflectance (kernels/common/fresnel.h).
 double fresnel_reflectance(double cos_i, double n1, double n2);
+
+// Every derived term of a (valid) dipole, per channel, as the C API reports them.
+arcus_dipole_terms dipole_terms(const arcus_dipole& d);
 
 // Checks, naming the argument: a coefficient set (sigma_a[c] >= 0, sigma_s_prime[c] > 0,
 // finite) and the dipole's η (1 to 3: F_dr's fit, eq. above, is for a medium optically

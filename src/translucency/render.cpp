@@ -40,22 +40,17 @@ const KernelSource kGather{"translucency/gather",
 ARCUS_KERNEL_ARGS(AllArg, "arcus_translucency_gather_all", ARCUS_TRANSLUCENCY_GATHER_ALL_ARGS);
 ARCUS_KERNEL_ARGS(TreeArg, "arcus_translucency_gather_tree", ARCUS_TRANSLUCENCY_GATHER_TREE_ARGS);
 
-constexpr size_t kMaxLights = 64;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-void check_params(const arcus_translucency_render_params& p, const std::vector<arcus_directional_light>& lights) {
-  scene::check_camera(scene::camera_desc(p.camera), "params->camera");
+void check_params(const arcus_translucency_render_params& p) {
+  check_view(p.camera, p.ortho_height, p.mm_per_unit, p.exit);
   auto finite_at_least = [](double v, double lo, bool open, const char* name, const char* what) {
     require(std::isfinite(v) && (open ? v > lo : v >= lo),
             std::string(name) + " = " + number(v) + " is not " + what);
   };
-  finite_at_least(p.ortho_height, 0, false, "params->ortho_height", "a finite height >= 0 (0: the pinhole)");
-  finite_at_least(p.mm_per_unit, 0, true, "params->mm_per_unit", "a finite length > 0 (mm per mesh unit)");
-  require(p.exit == ARCUS_EXIT_THESIS || p.exit == ARCUS_EXIT_NORMALIZED,
-          "params->exit = " + std::to_string(p.exit) + " is not ARCUS_EXIT_THESIS (0) or ARCUS_EXIT_NORMALIZED (1)");
   finite_at_least(p.profile_scale, 0, true, "params->profile_scale", "a finite stretch > 0");
   require(p.profile_scaling == ARCUS_PROFILE_SCALE_ENERGY || p.profile_scaling == ARCUS_PROFILE_SCALE_THESIS,
           "params->profile_scaling = " + std::to_string(p.profile_scaling) +
@@ -68,18 +63,6 @@ void check_params(const arcus_translucency_render_params& p, const std::vector<a
           "params->max_solid_angle = " + number(p.max_solid_angle) + " is not a solid angle in (0, 4π] sr");
   require(std::isfinite(p.highlight_deg) && p.highlight_deg >= 0 && p.highlight_deg < 90,
           "params->highlight_deg = " + number(p.highlight_deg) + " is not an angle in [0, 90) degrees");
-  require(!lights.empty() && lights.size() <= kMaxLights,
-          "light_count = " + std::to_string(lights.size()) + " is not 1.." + std::to_string(kMaxLights));
-  for (size_t l = 0; l < lights.size(); ++l) {
-    const std::string at = "lights[" + std::to_string(l) + "].";
-    const Vec3 d = vec3(lights[l].direction);
-    require(std::isfinite(d.x) && std::isfinite(d.y) && std::isfinite(d.z) && length(d) > 0,
-            at + "direction is not a finite direction of length > 0");
-    for (int c = 0; c < 3; ++c)
-      require(std::isfinite(lights[l].irradiance[c]) && lights[l].irradiance[c] >= 0,
-              at + "irradiance[" + std::to_string(c) + "] = " + number(lights[l].irradiance[c]) +
-                  " is not a finite irradiance >= 0");
-  }
 }
 
 // The kernels' channel terms (dipole_rd.h) for the dipole stretched by s: R_d(r/s)/s² is
@@ -270,7 +253,8 @@ std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const geometry::Mesh& me
                                   const std::vector<arcus_directional_light>& lights,
                                   const arcus_translucency_render_params& p, bool* cancelled) {
   const auto start = std::chrono::steady_clock::now();
-  check_params(p, lights);
+  check_params(p);
+  const std::vector<Light> light_list = lights_of(lights);
   *cancelled = false;
   auto job = std::make_unique<RenderJob>(ctx);
   job->features = ARCUS_FEATURE_TRANSLUCENCY_DIPOLE |
@@ -278,16 +262,7 @@ std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const geometry::Mesh& me
   const Surface surface = make_surface(mesh, p.mm_per_unit);
   const double spacing = choose_spacing(surface, dipole, p.profile_scale, p.sample_spacing_mm);
   const Samples samples = make_samples(surface, spacing);
-  std::vector<Light> light_list;
-  for (const arcus_directional_light& l : lights) {
-    Light light{normalized(vec3(l.direction)), {}};
-    for (int c = 0; c < 3; ++c) light.irradiance[c] = l.irradiance[c];
-    light_list.push_back(light);
-  }
-  // The camera in mm, as the surface is.
-  scene::CameraDesc camera = scene::camera_desc(p.camera);
-  camera.position = p.mm_per_unit * camera.position;
-  camera.look_at = p.mm_per_unit * camera.look_at;
+  const scene::CameraDesc camera = camera_in_mm(p.camera, p.mm_per_unit);
   const bvh::DeviceBvh bvh(ctx, bvh::build_triangles(surface.mesh), false);
   std::vector<double> powers = sample_irradiance(ctx, bvh, surface, samples, light_list, dipole.eta);
   for (size_t s = 0; s < samples.size(); ++s)

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "core/error.h"
+#include "core/format.h"
 
 // kernels/common/fresnel.h is scalar code the host includes after common/real.h.
 #include "common/real.h"
@@ -131,6 +133,45 @@ Samples make_samples(const Surface& s, double spacing) {
   return out;
 }
 
+std::vector<Light> lights_of(const std::vector<arcus_directional_light>& lights) {
+  constexpr size_t kMaxLights = 64;
+  require(!lights.empty() && lights.size() <= kMaxLights,
+          "light_count = " + std::to_string(lights.size()) + " is not 1.." + std::to_string(kMaxLights));
+  std::vector<Light> out;
+  for (size_t l = 0; l < lights.size(); ++l) {
+    const std::string at = "lights[" + std::to_string(l) + "].";
+    const Vec3 d = vec3(lights[l].direction);
+    require(std::isfinite(d.x) && std::isfinite(d.y) && std::isfinite(d.z) && length(d) > 0,
+            at + "direction is not a finite direction of length > 0");
+    Light light{normalized(d), {}};
+    for (int c = 0; c < 3; ++c) {
+      require(std::isfinite(lights[l].irradiance[c]) && lights[l].irradiance[c] >= 0,
+              at + "irradiance[" + std::to_string(c) + "] = " + number(lights[l].irradiance[c]) +
+                  " is not a finite irradiance >= 0");
+      light.irradiance[c] = lights[l].irradiance[c];
+    }
+    out.push_back(light);
+  }
+  return out;
+}
+
+void check_view(const arcus_camera& camera, double ortho_height, double mm_per_unit, int32_t exit) {
+  scene::check_camera(scene::camera_desc(camera), "params->camera");
+  require(std::isfinite(ortho_height) && ortho_height >= 0,
+          "params->ortho_height = " + number(ortho_height) + " is not a finite height >= 0 (0: the pinhole)");
+  require(std::isfinite(mm_per_unit) && mm_per_unit > 0,
+          "params->mm_per_unit = " + number(mm_per_unit) + " is not a finite length > 0 (mm per mesh unit)");
+  require(exit == ARCUS_EXIT_THESIS || exit == ARCUS_EXIT_NORMALIZED,
+          "params->exit = " + std::to_string(exit) + " is not ARCUS_EXIT_THESIS (0) or ARCUS_EXIT_NORMALIZED (1)");
+}
+
+scene::CameraDesc camera_in_mm(const arcus_camera& camera, double mm_per_unit) {
+  scene::CameraDesc c = scene::camera_desc(camera);
+  c.position = mm_per_unit * c.position;
+  c.look_at = mm_per_unit * c.look_at;
+  return c;
+}
+
 std::vector<uint8_t> visibility(arcus_context_t* ctx, const bvh::DeviceBvh& bvh, const Surface& surface,
                                 const std::vector<double>& points, const std::vector<uint32_t>& triangle,
                                 const std::vector<Light>& lights) {
@@ -217,6 +258,38 @@ Views camera_hits(arcus_context_t* ctx, const bvh::DeviceBvh& bvh, const Surface
     const Vec3 at = vec3(rays[p].origin) + hits[p].t * vec3(rays[p].direction);
     store(at, &v.points[3 * p]);
     store(shading_normal(surface, size_t(hits[p].primitive), hits[p].u, hits[p].v), &v.normals[3 * p]);
+  }
+  return v;
+}
+
+Views back_hits(arcus_context_t* ctx, const bvh::DeviceBvh& bvh, const Surface& surface, const Views& front) {
+  const size_t pixels = front.triangle.size();
+  const double reach = 2 * surface.diagonal;
+  std::vector<bvh::Segment> rays;
+  std::vector<size_t> which;
+  for (size_t p = 0; p < pixels; ++p) {
+    if (front.triangle[p] < 0) continue;
+    const Vec3 back = vec3(&front.toward_eye[3 * p]);
+    bvh::Segment seg{};
+    store(vec3(&front.points[3 * p]) - reach * back, seg.origin);
+    store(back, seg.direction);
+    seg.t_max = reach;
+    rays.push_back(seg);
+    which.push_back(p);
+  }
+  const std::vector<bvh::Hit> hits = bvh::closest_hits(ctx, bvh, rays);
+  Views v;
+  v.points.assign(3 * pixels, NAN);
+  v.normals.assign(3 * pixels, NAN);
+  v.toward_eye = front.toward_eye;
+  v.triangle.assign(pixels, -1);
+  for (size_t i = 0; i < hits.size(); ++i) {
+    const size_t p = which[i];
+    // The front point itself is on the surface, so the ray always ends on something.
+    if (hits[i].primitive < 0) continue;
+    v.triangle[p] = hits[i].primitive;
+    store(vec3(rays[i].origin) + hits[i].t * vec3(rays[i].direction), &v.points[3 * p]);
+    store(shading_normal(surface, size_t(hits[i].primitive), hits[i].u, hits[i].v), &v.normals[3 * p]);
   }
   return v;
 }

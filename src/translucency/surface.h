@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "arcus/arcus_translucency.h"
 #include "bvh/device_bvh.h"
 #include "geometry/mesh.h"
 #include "geometry/vec3.h"
@@ -55,6 +56,17 @@ struct Light {
   double irradiance[3]; // on a surface facing it
 };
 
+// The caller's lights, checked (1..64; finite, non-zero directions; finite irradiances
+// >= 0), messages naming them ("lights[1].irradiance[2]").
+std::vector<Light> lights_of(const std::vector<arcus_directional_light>& lights);
+
+// The view parameters renders and estimates share, checked, naming them
+// ("params->camera", "params->ortho_height", "params->mm_per_unit", "params->exit").
+void check_view(const arcus_camera& camera, double ortho_height, double mm_per_unit, int32_t exit);
+
+// The caller's camera (mesh units) with positions in mm, as the surface's.
+scene::CameraDesc camera_in_mm(const arcus_camera& camera, double mm_per_unit);
+
 // Whether each point (3 per point, on the surface) sees each light: a shadow ray per
 // pair through the BVH, started a hair off the surface along its triangle's normal;
 // a light behind the triangle is not seen.  visible[p * lights + l].
@@ -76,5 +88,10 @@ struct Views {
 };
 Views camera_hits(arcus_context_t* ctx, const bvh::DeviceBvh& bvh, const Surface& surface,
                   const scene::CameraDesc& camera, double ortho_height);
+
+// Where each of those rays last leaves the surface (the thesis' back points p_b, §3.3.1):
+// a ray shot back along it from beyond the object.  Pixels without a front point have
+// none; toward_eye is the front's.
+Views back_hits(arcus_context_t* ctx, const bvh::DeviceBvh& bvh, const Surface& surface, const Views& front);
 
 }  // namespace arcus::translucency

@@ -1,0 +1,330 @@
+#include "translucency/estimate.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "bvh/bvh.h"
+#include "bvh/device_bvh.h"
+#include "core/buffer.h"
+#include "core/error.h"
+#include "core/features.h"
+#include "core/format.h"
+#include "core/kernel_source.h"
+#include "core/launch.h"
+#include "translucency/dipole.h"
+#include "translucency/fit.h"
+#include "translucency/least_squares.h"
+#include "translucency/surface.h"
+
+// Fresnel and the histogram's arguments: scalar host code after common/real.h.
+#include "common/real.h"
+#include "common/fresnel.h"
+#include "translucency/translucency_desc.h"
+
+namespace arcus::translucency {
+namespace {
+
+const FeatureTable kTable{"translucency estimate",
+                          {{ARCUS_FEATURE_TRANSLUCENCY_HISTOGRAM, "TRANSLUCENCY_HISTOGRAM", "-D ARCUS_USE_HISTOGRAM"}}};
+const FeatureTableEntry kRegistered(&kTable);
+
+const KernelSource kHistogram{"translucency/histogram",
+                              {"common/real.h", "translucency/translucency_desc.h", "translucency/histogram.cl"}, ""};
+ARCUS_KERNEL_ARGS(HistogramArg, "arcus_translucency_histogram", ARCUS_TRANSLUCENCY_HISTOGRAM_ARGS);
+
+// |c·n| below this is taken as this: ΔA = pixel area / |c·n| diverges at the
+// silhouette, where a pixel holds a sliver of surface turning away (thesis eq. 3.12).
+constexpr double kMinCosine = 0.05;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double luminance(const double rgb[3]) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
+
+void check_params(const arcus_translucency_estimate_params& p, uint32_t width, uint32_t height) {
+  check_view(p.camera, p.ortho_height, p.mm_per_unit, p.exit);
+  check_eta(p.eta, "params->eta");
+  require(p.basis_count >= 2 && p.basis_count <= 64,
+          "params->basis_count = " + std::to_string(p.basis_count) + " is not 2..64");
+  require(p.basis == ARCUS_BASIS_PIECEWISE_CONSTANT,
+          "params->basis = " + std::to_string(p.basis) + " is not ARCUS_BASIS_PIECEWISE_CONSTANT (0)");
+  require(std::isfinite(p.r_max_mm) && p.r_max_mm >= 0,
+          "params->r_max_mm = " + number(p.r_max_mm) + " is not a finite distance >= 0 (0: the object's diagonal)");
+  require(p.max_side >= 8 && p.max_side <= 4096, "params->max_side = " + std::to_string(p.max_side) + " is not 8..4096");
+  require(p.remove_highlights == 0 || p.remove_highlights == 1,
+          "params->remove_highlights = " + std::to_string(p.remove_highlights) + " is not 0 or 1");
+  require(p.subtract_minimum == 0 || p.subtract_minimum == 1,
+          "params->subtract_minimum = " + std::to_string(p.subtract_minimum) + " is not 0 or 1");
+  require(p.fit == ARCUS_FIT_IMAGE || p.fit == ARCUS_FIT_PROFILE,
+          "params->fit = " + std::to_string(p.fit) + " is not ARCUS_FIT_IMAGE (0) or ARCUS_FIT_PROFILE (1)");
+  require(width >= 1 && width <= scene::kMaxSide && height >= 1 && height <= scene::kMaxSide,
+          "width × height = " + std::to_string(width) + " × " + std::to_string(height) + " is not 1..16384 a side");
+  require(width == p.camera.width && height == p.camera.height,
+          "the photo's " + std::to_string(width) + " × " + std::to_string(height) + " is not params->camera's " +
+              std::to_string(p.camera.width) + " × " + std::to_string(p.camera.height));
+}
+
+// The distance histograms (eq. 3.16) of every row point over the sources, on the device.
+std::vector<double> histograms(arcus_context_t* ctx, EstimateJob& job, const std::vector<double>& rows,
+                               const std::vector<double>& sources, const std::vector<double>& weights, uint32_t bins,
+                               double bin_width, const arcus_translucency_estimate_params& p, bool* cancelled) {
+  const size_t n = rows.size() / 3;
+  job.features = ARCUS_FEATURE_TRANSLUCENCY_HISTOGRAM;
+  const BuiltProgram built = build_job_program(ctx, job, kHistogram, Layout{1, 1});
+  DeviceBuffer out(ctx, n * 4 * bins * sizeof(double), "the distance histograms");
+  Launch<HistogramArg> launch(ctx, built.program);
+  launch.upload(HistogramArg::rows, rows, "the equation points");
+  launch.upload(HistogramArg::sources, sources, "the source points");
+  launch.upload(HistogramArg::weights, weights, "the sources' irradiance × area");
+  launch.bind(HistogramArg::histograms, &out);
+  launch.bind_value(HistogramArg::source_count, static_cast<cl_uint>(sources.size() / 3));
+  launch.bind_value(HistogramArg::bins, static_cast<cl_uint>(bins));
+  launch.bind_value(HistogramArg::bin_width, bin_width);
+  SliceRange slices;
+  slices.total = n;
+  slices.first_units = 64;
+  slices.progress = p.progress;
+  slices.progress_user = p.progress_user;
+  *cancelled = launch.run_slices(slices, [&](uint64_t first, uint64_t end) {
+    launch.bind_value(HistogramArg::first, static_cast<cl_uint>(first));
+    launch.bind_value(HistogramArg::count, static_cast<cl_uint>(end - first));
+    return size_t(end - first);
+  }, &job.stats);
+  std::vector<double> h(n * 4 * bins, 0.0);
+  out.read(ctx, 0, h.size() * sizeof(double), h.data());
+  return h;
+}
+
+// The object's diameter, the largest distance between two of its points, by the double
+// sweep: the vertex farthest from the centroid, then the vertex farthest from that one
+// (exact for spheres and boxes; never more than the true diameter).
+double diameter(const Surface& s) {
+  const size_t n = s.mesh.vertex_count();
+  Vec3 centre{};
+  for (size_t v = 0; v < n; ++v) centre = centre + vec3(&s.mesh.positions[3 * v]);
+  centre = (1.0 / double(n)) * centre;
+  auto farthest = [&](Vec3 from) {
+    Vec3 best = from;
+    for (size_t v = 0; v < n; ++v)
+      if (length(vec3(&s.mesh.positions[3 * v]) - from) > length(best - from)) best = vec3(&s.mesh.positions[3 * v]);
+    return best;
+  };
+  const Vec3 a = farthest(centre);
+  return length(farthest(a) - a);
+}
+
+}  // namespace
+
+double highlight_cut(const std::vector<double>& lum) {
+  if (lum.empty()) return INFINITY;
+  const double top = *std::max_element(lum.begin(), lum.end());
+  if (!(top > 0)) return INFINITY;
+  constexpr int kBins = 256;
+  std::vector<double> h(kBins, 0.0), smooth(kBins, 0.0);
+  for (double y : lum) h[std::min(kBins - 1, int(y / top * kBins))] += 1;
+  for (int k = 0; k < kBins; ++k) {
+    double s = 0;
+    int n = 0;
+    for (int d = -2; d <= 2; ++d)
+      if (k + d >= 0 && k + d < kBins) s += h[size_t(k + d)], ++n;
+    smooth[size_t(k)] = s / n;
+  }
+  const int peak = int(std::max_element(smooth.begin(), smooth.end()) - smooth.begin());
+  int steepest = peak;
+  for (int k = peak; k + 1 < kBins; ++k)
+    if (smooth[size_t(k + 1)] - smooth[size_t(k)] < smooth[size_t(steepest + 1)] - smooth[size_t(steepest)])
+      steepest = k;
+  int cut = steepest + 1;
+  while (cut + 1 < kBins && smooth[size_t(cut + 1)] < smooth[size_t(cut)]) ++cut;
+  if (cut + 1 >= kBins) return INFINITY;  // the histogram falls to its end: no highlight bump
+  return top * (cut + 1) / kBins;
+}
+
+std::unique_ptr<EstimateJob> estimate(arcus_context_t* ctx, const geometry::Mesh& mesh, uint32_t width,
+                                      uint32_t height, const float* photo, const uint8_t* matte,
+                                      const std::vector<arcus_directional_light>& lights,
+                                      const arcus_translucency_estimate_params& p, bool* cancelled) {
+  const auto start = std::chrono::steady_clock::now();
+  check_params(p, width, height);
+  const std::vector<Light> light_list = lights_of(lights);
+  const size_t full = size_t(width) * height;
+  for (size_t i = 0; i < 3 * full; ++i)
+    require(std::isfinite(photo[i]) && photo[i] >= 0,
+            "photo[" + std::to_string(i) + "] = " + number(photo[i]) + " (pixel " + std::to_string(i / 3 % width) +
+                ", " + std::to_string(i / 3 / width) + ") is not a finite radiance >= 0");
+  *cancelled = false;
+  auto job = std::make_unique<EstimateJob>(ctx);
+  arcus_translucency_estimate_result& res = job->result;
+
+  // Downscale by a whole factor f (box filter): the thesis' ~200 × 200.
+  const uint32_t f = std::max(1u, (std::max(width, height) + p.max_side - 1) / p.max_side);
+  const uint32_t w = std::max(1u, width / f), h = std::max(1u, height / f);
+  const size_t pixels = size_t(w) * h;
+  std::vector<double> rgb(3 * pixels, 0.0), matte_share(pixels, 0.0);
+  for (uint32_t y = 0; y < h * f; ++y)
+    for (uint32_t x = 0; x < w * f; ++x) {
+      const size_t coarse = size_t(y / f) * w + x / f, fine = size_t(y) * width + x;
+      for (int c = 0; c < 3; ++c) rgb[3 * coarse + c] += photo[3 * fine + c] / double(f * f);
+      if (matte) matte_share[coarse] += (matte[fine] != 0) / double(f * f);
+    }
+
+  // Geometry at the coarse pixels: front and back points, normals, irradiance.
+  arcus_camera coarse_camera = p.camera;
+  coarse_camera.width = w;
+  coarse_camera.height = h;
+  const scene::CameraDesc camera = camera_in_mm(coarse_camera, p.mm_per_unit);
+  const Surface surface = make_surface(mesh, p.mm_per_unit);
+  const bvh::DeviceBvh bvh(ctx, bvh::build_triangles(surface.mesh), false);
+  const double ortho = p.ortho_height * p.mm_per_unit;
+  const Views front = camera_hits(ctx, bvh, surface, camera, ortho);
+  const Views back = back_hits(ctx, bvh, surface, front);
+  std::vector<size_t> object;  // 𝕆: the coarse pixels of the object
+  std::vector<uint8_t> in_object(pixels, 0);
+  for (size_t px = 0; px < pixels; ++px)
+    if (front.triangle[px] >= 0 && back.triangle[px] >= 0 && (!matte || matte_share[px] >= 0.5)) {
+      object.push_back(px);
+      in_object[px] = 1;
+    }
+  require(!object.empty(), matte ? "matte: it covers no pixel where the mesh is seen (is the camera right?)"
+                                 : "mesh: the camera sees no part of it (params->camera)");
+
+  // Sources: every object pixel's front and back point, weighted by E·ΔA (eq. 3.12).
+  const scene::Frame frame = scene::camera_frame(camera);
+  const double pixel_angle = 2 * frame.tan_half / h, pixel_side = ortho / h;
+  std::vector<double> source_points;
+  std::vector<uint32_t> source_triangles;
+  std::vector<Vec3> source_normals;
+  std::vector<double> source_area;
+  for (const Views* side : {&front, &back})
+    for (size_t px : object) {
+      const Vec3 at = vec3(&side->points[3 * px]), n = vec3(&side->normals[3 * px]),
+                 eye = vec3(&front.toward_eye[3 * px]);
+      // The pixel's footprint on a plane square to the ray: orthographic, its side
+      // squared; pinhole, its solid angle (cos³ off the axis) times the distance squared.
+      double footprint = pixel_side * pixel_side;
+      if (ortho == 0) {
+        const double cos_axis = -dot(eye, frame.forward), dist = length(at - frame.origin);
+        footprint = pixel_angle * pixel_angle * cos_axis * cos_axis * cos_axis * dist * dist;
+      }
+      source_points.insert(source_points.end(), {at.x, at.y, at.z});
+      source_triangles.push_back(static_cast<uint32_t>(side->triangle[px]));
+      source_normals.push_back(n);
+      source_area.push_back(footprint / std::max(kMinCosine, std::fabs(dot(eye, n))));
+    }
+  const std::vector<uint8_t> visible =
+      visibility(ctx, bvh, surface, source_points, source_triangles, light_list);
+  std::vector<double> weights(source_points.size(), 0.0);
+  double total_light = 0;
+  for (size_t s = 0; s < source_normals.size(); ++s)
+    for (size_t l = 0; l < light_list.size(); ++l) {
+      if (!visible[s * light_list.size() + l]) continue;
+      const double cos_i = std::max(0.0, dot(source_normals[s], light_list[l].toward));
+      const double through = cos_i * (1 - arcus_fresnel_reflectance(cos_i, 1.0, p.eta)) * source_area[s];
+      for (int c = 0; c < 3; ++c) {
+        weights[3 * s + c] += through * light_list[l].irradiance[c];
+        total_light += through * light_list[l].irradiance[c];
+      }
+    }
+  require(total_light > 0, "lights: no light reaches the object's seen or back surface (is the light behind it?)");
+
+  // Equations 𝕀: object pixels off the matte's rim, below the highlights' cut.
+  std::vector<double> lum;
+  size_t darkest = object[0];
+  for (size_t px : object) {
+    lum.push_back(luminance(&rgb[3 * px]));
+    if (lum.back() < luminance(&rgb[3 * darkest])) darkest = px;
+  }
+  res.highlight_cut = p.remove_highlights ? highlight_cut(lum) : INFINITY;
+  for (int c = 0; c < 3; ++c) res.minimum_subtracted[c] = p.subtract_minimum ? rgb[3 * darkest + c] : 0;
+  std::vector<size_t> equations;
+  for (size_t px : object) {
+    const size_t x = px % w, y = px / w;
+    const bool rim = x == 0 || y == 0 || x + 1 == w || y + 1 == h || !in_object[px - 1] || !in_object[px + 1] ||
+                     !in_object[px - w] || !in_object[px + w];
+    if (!rim && luminance(&rgb[3 * px]) <= res.highlight_cut) equations.push_back(px);
+  }
+  require(!equations.empty(), "photo: no object pixel is left for the equations once the matte's rim and the "
+                              "highlights are dropped (the object covers too few pixels)");
+  std::vector<double> rows;
+  for (size_t px : equations) rows.insert(rows.end(), &front.points[3 * px], &front.points[3 * px] + 3);
+  res.geometry_seconds = seconds_since(start);
+
+  // The histograms, then per channel A (bins summed into basis functions) and b.
+  const auto histogram_start = std::chrono::steady_clock::now();
+  const uint32_t m = p.basis_count;
+  const uint32_t per_basis = std::min<uint32_t>(8, ARCUS_MAX_HISTOGRAM_BINS / m), bins = m * per_basis;
+  res.r_max_mm = p.r_max_mm > 0 ? p.r_max_mm : diameter(surface);
+  const std::vector<double> hist =
+      histograms(ctx, *job, rows, source_points, weights, bins, res.r_max_mm / bins, p, cancelled);
+  res.histogram_seconds = seconds_since(histogram_start);
+
+  const auto solve_start = std::chrono::steady_clock::now();
+  // The near field: within ρ of a row's point the pixels' lattice is too coarse a sum for
+  // R_d's peak (its width is z_r, near a pixel), so the fine bins there are left out and
+  // replaced by the row's own irradiance over a flat disc of radius ρ, ∫₀^ρ 2πr R_d dr
+  // E_i (fit.h; closed form for the dipole).  ρ: four pixels at the object, in whole bins.
+  const double fine_width = res.r_max_mm / bins;
+  const double pixel_mm = ortho > 0 ? pixel_side : pixel_angle * length(camera.look_at - camera.position);
+  const uint32_t near_bins = std::min(bins - 1, std::max(1u, uint32_t(std::ceil(4 * pixel_mm / fine_width))));
+  const double near_radius = near_bins * fine_width;
+  std::vector<size_t> front_source(pixels, 0);
+  for (size_t k = 0; k < object.size(); ++k) front_source[object[k]] = k;
+  const double exit_scale = (1 / M_PI) / (p.exit == ARCUS_EXIT_NORMALIZED ? exit_transmittance(p.eta) : 1.0);
+  const size_t n = equations.size();
+  std::vector<double> fine_edges(bins + 1);
+  for (uint32_t k = 0; k <= bins; ++k) fine_edges[k] = res.r_max_mm * k / bins;
+  job->edges.resize(m + 1);
+  for (uint32_t k = 0; k <= m; ++k) job->edges[k] = res.r_max_mm * k / m;
+  job->weights.assign(size_t(m) * 3, 0.0);
+  for (int c = 0; c < 3; ++c) {
+    std::vector<double> a(n * m, 0.0), b(n), near(n);
+    for (size_t i = 0; i < n; ++i) {
+      const size_t px = equations[i];
+      const double cos_o = std::fabs(dot(vec3(&front.normals[3 * px]), vec3(&front.toward_eye[3 * px])));
+      b[i] = (rgb[3 * px + c] - res.minimum_subtracted[c]) /
+             (exit_scale * (1 - arcus_fresnel_reflectance(cos_o, 1.0, p.eta)));
+      for (uint32_t k = near_bins; k < bins; ++k) a[i * m + k / per_basis] += hist[(i * bins + k) * 4 + size_t(c)];
+      const size_t own = front_source[px];
+      near[i] = weights[3 * own + size_t(c)] / source_area[own];
+      for (uint32_t h = 0; h < m; ++h) {
+        const double lo = std::min(near_radius, job->edges[h]), hi = std::min(near_radius, job->edges[h + 1]);
+        a[i * m + h] += near[i] * M_PI * (hi * hi - lo * lo);
+      }
+    }
+    LeastSquaresReport report;
+    const std::vector<double> x = solve_least_squares(a, n, m, b, LeastSquaresOptions{}, &report);
+    for (uint32_t k = 0; k < m; ++k) job->weights[size_t(k) * 3 + size_t(c)] = x[k];
+    res.iterations[c] = report.iterations;
+    res.residual[c] = report.residual;
+    res.condition_a[c] = report.condition_a;
+    res.condition_normal[c] = report.condition_normal;
+    res.dropped_columns[c] = static_cast<uint32_t>(report.dropped.size());
+    DipoleFit fit;
+    if (p.fit == ARCUS_FIT_PROFILE) {
+      fit = fit_to_profile(job->edges, x, p.eta);
+    } else {
+      std::vector<double> channel_hist(n * bins);
+      for (size_t i = 0; i < n * bins; ++i) channel_hist[i] = hist[i * 4 + size_t(c)];
+      fit = fit_to_image(fine_edges, channel_hist, near_bins, near, near_radius, b, p.eta);
+    }
+    res.dipole.sigma_a[c] = fit.channel.sigma_a;
+    res.dipole.sigma_s_prime[c] = fit.channel.sigma_s_prime;
+    res.fit_error[c] = fit.error;
+  }
+  res.dipole.eta = p.eta;
+  res.terms = dipole_terms(res.dipole);
+  res.solve_seconds = seconds_since(solve_start);
+  res.width = w;
+  res.height = h;
+  res.object_pixels = static_cast<uint32_t>(object.size());
+  res.equation_pixels = static_cast<uint32_t>(n);
+  res.basis_count = m;
+  job->count = n;
+  job->stats.total_seconds = seconds_since(start);
+  return job;
+}
+
+}  // namespace arcus::translucency

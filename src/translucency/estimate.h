@@ -1,0 +1,38 @@
+// Estimating a BSSRDF from one HDR photograph (thesis §3.3.1; Muñoz et al. 2011): the
+// photo downscaled, its matte, highlights and minimum; front and back points with their
+// irradiance (eq. 3.10–3.11); the distance histograms of eq. 3.16 on the device
+// (kernels/translucency/histogram.cl); per channel the least-squares solve
+// (least_squares.h) and the dipole fit (fit.h).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "arcus/arcus_translucency.h"
+#include "core/job.h"
+#include "geometry/mesh.h"
+
+namespace arcus::translucency {
+
+struct EstimateJob : arcus_job_s {
+  explicit EstimateJob(arcus_context_t* ctx) : arcus_job_s(ctx, "translucency estimate") {}
+  arcus_translucency_estimate_result result{};
+  std::vector<double> edges, weights;  // m + 1; m × 3
+};
+
+// The luminance above which pixels are highlights (thesis §3.3.1 after Khan et al.
+// 2006): over a 256-bin histogram of the object's luminances, smoothed over 5 bins, the
+// steepest fall (the minimum of the derivative) above the histogram's peak marks where
+// the diffuse pixels end; the cut is the first bin after it where the histogram stops
+// falling (the valley before any highlight's bump), or the end.  INFINITY when nothing
+// lies above it.
+double highlight_cut(const std::vector<double>& luminance);
+
+// Checks every parameter, naming it as the C API does, and estimates.
+std::unique_ptr<EstimateJob> estimate(arcus_context_t* ctx, const geometry::Mesh& mesh, uint32_t width,
+                                      uint32_t height, const float* photo, const uint8_t* matte,
+                                      const std::vector<arcus_directional_light>& lights,
+                                      const arcus_translucency_estimate_params& params, bool* cancelled);
+
+}  // namespace arcus::translucency
