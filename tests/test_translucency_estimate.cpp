@@ -121,7 +121,8 @@ TEST_F(TranslucencyEstimate, BadInputIsRefusedNamingIt) {
   std::vector<uint32_t> t;
   icosphere(2, &v, &t);
   MeshHandle mesh(ctx(), v, t);
-  std::vector<float> rgb(3 * kSide * kSide, 0.1f);
+  std::vector<float> rgb(3 * kSide * kSide);
+  for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = 0.1f + 1e-6f * float(i);  // no two alike: nothing clipped
   const arcus_translucency_estimate_params good = estimate_params(1.3);
   arcus_job_t* job = nullptr;
   auto attempt = [&](const std::vector<float>& photo, const uint8_t* matte,
@@ -160,6 +161,19 @@ TEST_F(TranslucencyEstimate, BadInputIsRefusedNamingIt) {
   expect_invalid(arcus_translucency_estimate(ctx(), mesh.mesh, kSide, kSide, nullptr, nullptr, kLights.size(),
                                              kLights.data(), &good, &job),
                  "photo", "photo");
+  // Clipped: every pixel at one value.
+  attempt(std::vector<float>(rgb.size(), 0.5f), nullptr, kLights, good, "clipped");
+  // A matte off the mesh's projection: the left half of the image only.
+  std::vector<uint8_t> left(kSide * kSide, 0);
+  for (uint32_t y = 0; y < kSide; ++y)
+    for (uint32_t x = 0; x < kSide / 2; ++x) left[y * kSide + x] = 1;
+  attempt(rgb, left.data(), kLights, good, "IoU");
+  // An open mesh: the sphere less one triangle.
+  std::vector<uint32_t> holed(t.begin() + 3, t.end());
+  MeshHandle open(ctx(), v, holed);
+  expect_invalid(arcus_translucency_estimate(ctx(), open.mesh, kSide, kSide, rgb.data(), nullptr, kLights.size(),
+                                             kLights.data(), &good, &job),
+                 "closed", "an open mesh");
 }
 
 }  // namespace

@@ -116,6 +116,12 @@ double diameter(const Surface& s) {
   return length(farthest(a) - a);
 }
 
+// Whether a coarse pixel belongs to 𝕆: the mesh is seen there, and the matte (if any)
+// covers at least half of it.
+bool in_object_of(const Views& front, const std::vector<double>& matte_share, const uint8_t* matte, size_t px) {
+  return front.triangle[px] >= 0 && (!matte || matte_share[px] >= 0.5);
+}
+
 }  // namespace
 
 double highlight_cut(const std::vector<double>& lum) {
@@ -177,6 +183,9 @@ std::unique_ptr<EstimateJob> estimate(arcus_context_t* ctx, const geometry::Mesh
   coarse_camera.height = h;
   const scene::CameraDesc camera = camera_in_mm(coarse_camera, p.mm_per_unit);
   const Surface surface = make_surface(mesh, p.mm_per_unit);
+  const size_t open = open_edges(surface);
+  require(open == 0, "mesh: " + std::to_string(open) + " edges are not shared by exactly two triangles: the estimate "
+                     "needs a closed surface (every view ray's back point)");
   const bvh::DeviceBvh bvh(ctx, bvh::build_triangles(surface.mesh), false);
   const double ortho = p.ortho_height * p.mm_per_unit;
   const Views front = camera_hits(ctx, bvh, surface, camera, ortho);
@@ -184,12 +193,41 @@ std::unique_ptr<EstimateJob> estimate(arcus_context_t* ctx, const geometry::Mesh
   std::vector<size_t> object;  // 𝕆: the coarse pixels of the object
   std::vector<uint8_t> in_object(pixels, 0);
   for (size_t px = 0; px < pixels; ++px)
-    if (front.triangle[px] >= 0 && back.triangle[px] >= 0 && (!matte || matte_share[px] >= 0.5)) {
+    if (back.triangle[px] >= 0 && in_object_of(front, matte_share, matte, px)) {
       object.push_back(px);
       in_object[px] = 1;
     }
   require(!object.empty(), matte ? "matte: it covers no pixel where the mesh is seen (is the camera right?)"
                                  : "mesh: the camera sees no part of it (params->camera)");
+  if (matte) {
+    // The matte against the mesh's projection: a misplaced camera or mesh shows here.
+    size_t both = 0, either = 0;
+    for (size_t px = 0; px < pixels; ++px) {
+      const bool seen = front.triangle[px] >= 0, marked = matte_share[px] >= 0.5;
+      both += seen && marked;
+      either += seen || marked;
+    }
+    const double iou = either ? double(both) / double(either) : 0;
+    require(iou >= 0.9, "matte: it overlaps the mesh's projection by IoU " + number(iou) +
+                            " < 0.9: the mesh, the camera and the photo do not line up");
+  }
+  {
+    // A clipped exposure: many of the object's pixels at one maximum value.
+    float top[3] = {0, 0, 0};
+    for (size_t i = 0; i < full; ++i)
+      for (int c = 0; c < 3; ++c) top[c] = std::max(top[c], photo[3 * i + c]);
+    size_t at_top = 0, inside = 0;
+    for (uint32_t y = 0; y < h * f; ++y)
+      for (uint32_t x = 0; x < w * f; ++x) {
+        if (!in_object_of(front, matte_share, matte, size_t(y / f) * w + x / f)) continue;
+        ++inside;
+        const float* px = &photo[3 * (size_t(y) * width + x)];
+        at_top += (top[0] > 0 && px[0] == top[0]) || (top[1] > 0 && px[1] == top[1]) || (top[2] > 0 && px[2] == top[2]);
+      }
+    require(at_top <= inside / 100, "photo: " + std::to_string(at_top) + " of the object's " + std::to_string(inside) +
+                                        " pixels sit at the largest value (clipped?): give an HDR exposure that "
+                                        "keeps them below it");
+  }
 
   // Sources: every object pixel's front and back point, weighted by E·ΔA (eq. 3.12).
   const scene::Frame frame = scene::camera_frame(camera);

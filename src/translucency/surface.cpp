@@ -1,6 +1,9 @@
 #include "translucency/surface.h"
 
 #include <algorithm>
+#include <array>
+#include <map>
+#include <utility>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -71,6 +74,23 @@ Surface make_surface(const geometry::Mesh& mesh, double mm_per_unit) {
     }
   }
   return s;
+}
+
+size_t open_edges(const Surface& s) {
+  std::map<std::array<double, 3>, uint32_t> ids;
+  auto id = [&](uint32_t vertex) {
+    const double* p = &s.mesh.positions[3 * size_t(vertex)];
+    return ids.emplace(std::array<double, 3>{p[0], p[1], p[2]}, static_cast<uint32_t>(ids.size())).first->second;
+  };
+  std::map<std::pair<uint32_t, uint32_t>, int> uses;
+  for (size_t t = 0; t < s.mesh.triangle_count(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = id(s.mesh.triangles[3 * t + k]), b = id(s.mesh.triangles[3 * t + (k + 1) % 3]);
+      if (a != b) ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  size_t open = 0;
+  for (const auto& [edge, count] : uses) open += count != 2;
+  return open;
 }
 
 Vec3 shading_normal(const Surface& s, size_t t, double u, double v) {

@@ -28,6 +28,10 @@ struct Surface {
   double diagonal = 0;          // of its bounding box [mm]
 };
 
+// Edges not shared by exactly two triangles, vertices taken as equal where their
+// positions are (files often repeat a vertex per face): 0 for a closed mesh.
+size_t open_edges(const Surface& s);
+
 // Triangles meeting at a vertex at a sharper angle than this keep their own normals.
 constexpr double kCreaseDeg = 45;
 

@@ -25,6 +25,8 @@ from ._structs import (  # noqa: F401  (re-exported: the package uses _lib.<Stru
     DirectionalLightStruct,
     TranslucencyRenderParamsStruct,
     TranslucencyRenderStatsStruct,
+    TranslucencyEstimateParamsStruct,
+    TranslucencyEstimateResultStruct,
     InversionStruct,
     AtmosphereDescStruct,
     AdvanceParamsStruct,
@@ -221,6 +223,12 @@ _PROTOTYPES = {
                                             _out_handle]),
     "arcus_job_get_translucency_stats": (_status, [_handle, POINTER(TranslucencyRenderStatsStruct)]),
     "arcus_job_get_translucency_image": (_status, [_handle, c_void_p, c_void_p, c_void_p]),
+    "arcus_translucency_estimate_params_init": (_status, [POINTER(TranslucencyEstimateParamsStruct)]),
+    "arcus_translucency_estimate": (_status, [_handle, _handle, c_uint32, c_uint32, c_void_p, c_void_p, c_size_t,
+                                              POINTER(DirectionalLightStruct),
+                                              POINTER(TranslucencyEstimateParamsStruct), _out_handle]),
+    "arcus_job_get_translucency_estimate": (_status, [_handle, POINTER(TranslucencyEstimateResultStruct)]),
+    "arcus_job_get_translucency_profile": (_status, [_handle, _dvec, _dvec]),
 }
 
 # ---- finding the library --------------------------------------------------------------

@@ -353,6 +353,25 @@ class TranslucencyRenderStatsStruct(ctypes.Structure):
     ]
 
 
+class TranslucencyEstimateParamsStruct(ctypes.Structure):
+    _fields_ = [
+        ("camera", CameraStruct),
+        ("ortho_height", c_double),
+        ("mm_per_unit", c_double),
+        ("eta", c_double),
+        ("exit", c_int32),
+        ("basis_count", c_uint32),
+        ("basis", c_int32),
+        ("r_max_mm", c_double),
+        ("max_side", c_uint32),
+        ("remove_highlights", c_int32),
+        ("subtract_minimum", c_int32),
+        ("fit", c_int32),
+        ("progress", PROGRESS_CALLBACK),
+        ("progress_user", c_void_p),
+    ]
+
+
 class DipoleTermsStruct(ctypes.Structure):
     _fields_ = [
         ("albedo", c_double * 3),
@@ -371,3 +390,27 @@ class DipoleTermsStruct(ctypes.Structure):
 
 #: void (*arcus_error_callback)(void* user, arcus_status status, const char* message)
 ERROR_CALLBACK = ctypes.CFUNCTYPE(None, c_void_p, c_int, c_char_p)
+
+
+class TranslucencyEstimateResultStruct(ctypes.Structure):
+    _fields_ = [
+        ("width", c_uint32),
+        ("height", c_uint32),
+        ("object_pixels", c_uint32),
+        ("equation_pixels", c_uint32),
+        ("highlight_cut", c_double),
+        ("minimum_subtracted", c_double * 3),
+        ("r_max_mm", c_double),
+        ("basis_count", c_uint32),
+        ("dipole", DipoleStruct),
+        ("terms", DipoleTermsStruct),
+        ("iterations", c_int32 * 3),
+        ("residual", c_double * 3),
+        ("condition_a", c_double * 3),
+        ("condition_normal", c_double * 3),
+        ("dropped_columns", c_uint32 * 3),
+        ("fit_error", c_double * 3),
+        ("geometry_seconds", c_double),
+        ("histogram_seconds", c_double),
+        ("solve_seconds", c_double),
+    ]

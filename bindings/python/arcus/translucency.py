@@ -9,6 +9,8 @@ R_d per mm², three channels R, G, B.
 >>> marble.total_reflectance          # (3,) closed form, = ∫ 2πr R_d(r) dr
 >>> marble.Rd([0.5, 1.0, 2.0])        # (3, 3): distances × channels
 >>> Dipole.from_reflectance(marble.total_reflectance, marble.diffuse_length, eta=1.5)
+>>> est = estimate_bssrdf("photo.exr", "bunny.ply", [((0, 1, 1), 1.0)], camera, mm_per_unit=20)
+>>> est.dipole, est.profile, est.condition, est.timings            # thesis §3.3.1
 >>> img = render(marble, "bunny.ply", [((0, 1, 1), 1.0)], {"position": (0, 0, 5), "look_at": (0, 0, 0)},
 ...              mm_per_unit=20, out="bunny.exr")   # eq. 3.6–3.8; img.image is (height, width, 3)
 """
@@ -29,7 +31,8 @@ from ._errors import ArgumentError
 from ._lib import lib
 from .context import _owned_context
 
-__all__ = ["Dipole", "materials", "henyey_greenstein", "fresnel_reflectance", "render", "Rendered", "read_mesh"]
+__all__ = ["Dipole", "materials", "henyey_greenstein", "fresnel_reflectance", "render", "Rendered", "read_mesh",
+           "estimate_bssrdf", "Estimate"]
 
 
 def _check(code):
@@ -204,6 +207,20 @@ def read_mesh(path, context=None):
     return vertices, triangles
 
 
+def _mesh_handle(ctx, mesh):
+    """An arcus_mesh_t of ``mesh`` (a file path or (vertices, triangles)) on ctx; the
+    caller releases it."""
+    handle = c_void_p()
+    if isinstance(mesh, (str, os.PathLike)):
+        ctx._check(lib.arcus_mesh_load(ctx._handle, to_path(mesh, "mesh"), byref(handle)))
+    elif isinstance(mesh, (tuple, list)) and len(mesh) == 2:
+        vertices, triangles = _meshes.mesh_arrays(mesh[0], mesh[1], "mesh ")
+        ctx._check(_meshes.create(ctx._handle, vertices, triangles, byref(handle)))
+    else:
+        raise ArgumentError("mesh must be a file path or a (vertices, triangles) pair, got %r" % (mesh,))
+    return handle
+
+
 def _lights(lights):
     """``lights`` as a ctypes array: a list of (direction, irradiance) pairs or dicts with
     those keys; irradiance is one number or R, G, B."""
@@ -289,14 +306,7 @@ def render(dipole, mesh, lights, camera=None, *, ortho_height=0.0, mm_per_unit=1
     for i, path in enumerate(outputs):
         to_path(path, "out[%d]" % i)
     with _owned_context(context) as ctx:
-        mesh_handle = c_void_p()
-        if isinstance(mesh, (str, os.PathLike)):
-            ctx._check(lib.arcus_mesh_load(ctx._handle, to_path(mesh, "mesh"), byref(mesh_handle)))
-        elif isinstance(mesh, (tuple, list)) and len(mesh) == 2:
-            vertices, triangles = _meshes.mesh_arrays(mesh[0], mesh[1], "mesh ")
-            ctx._check(_meshes.create(ctx._handle, vertices, triangles, byref(mesh_handle)))
-        else:
-            raise ArgumentError("mesh must be a file path or a (vertices, triangles) pair, got %r" % (mesh,))
+        mesh_handle = _mesh_handle(ctx, mesh)
         t0 = time.perf_counter()
         try:
             def start(callback, job_out):
@@ -331,3 +341,119 @@ def render(dipole, mesh, lights, camera=None, *, ortho_height=0.0, mm_per_unit=1
         image.write(path, rgb * exposure if eight_bit else rgb)
     return Rendered(image=rgb, subsurface=sub, covered=covered, stats=stats, features=features,
                     seconds=time.perf_counter() - t0)
+
+
+# ---- estimation from a photograph -------------------------------------------------------
+
+_FIT_TO = {"image": 0, "profile": 1}
+
+
+@dataclass(eq=False)
+class Estimate:
+    """A BSSRDF estimated from one photograph (:func:`estimate_bssrdf`, thesis §3.3.1):
+    ``dipole`` (a :class:`Dipole` fitted per channel), ``profile`` (``edges`` (m + 1,)
+    mm and ``weights`` (m, 3) per mm²: the piecewise-constant R_d), ``condition``
+    ({"A": (3,), "AtA": (3,)} condition numbers), ``solve`` (QMR iterations, residuals,
+    dropped columns, the fit's relative error, per channel), ``pixels`` (the downscaled
+    size, |𝕆| and |𝕀|), ``highlight_cut``, ``minimum_subtracted`` and ``timings``
+    (seconds per stage)."""
+    dipole: "Dipole"
+    profile: tuple
+    condition: dict
+    solve: dict
+    pixels: dict
+    highlight_cut: float
+    minimum_subtracted: np.ndarray
+    timings: dict
+    features: frozenset = frozenset()
+
+
+def _photo(photo):
+    """The photo as an (h, w, 3) float32 array: an array, or an HDR file (EXR, HDR, PFM);
+    8-bit formats are refused (their values are not radiance)."""
+    if isinstance(photo, (str, os.PathLike)):
+        path = os.fspath(photo)
+        if path.lower().endswith((".png", ".jpg", ".jpeg", ".bmp", ".gif")):
+            raise ArgumentError("photo: %s is an 8-bit image, whose values are display codes, not radiance: give "
+                                "an HDR photograph (.exr, .hdr)" % path)
+        photo = image.read(path)
+    array = np.ascontiguousarray(photo, dtype=np.float32)
+    if array.ndim != 3 or array.shape[2] != 3:
+        raise ArgumentError("photo must be an (height, width, 3) array or an HDR file, got shape %s" % (array.shape,))
+    return array
+
+
+def estimate_bssrdf(photo, mesh, lights, camera=None, *, basis=24, fit="dipole", fit_to="image", ortho_height=0.0,
+                    mm_per_unit=1.0, eta=1.3, exit="thesis", r_max_mm=0.0, max_side=200, matte=None,
+                    remove_highlights=True, subtract_minimum=True, progress=None, context=None):
+    """Estimates the BSSRDF of the object in ``photo`` (an HDR file or an (h, w, 3)
+    array of linear radiance) from its ``mesh`` (a path or ``(vertices, triangles)``),
+    its directional ``lights`` and ``camera`` (as :func:`render`; the camera's size is
+    the photo's): an :class:`Estimate`.  ``basis`` piecewise-constant functions up to
+    ``r_max_mm`` (0: the object's diameter); ``fit``: "dipole" (the only model so far);
+    ``fit_to``: "image" (the pixels the dipole predicts) or "profile" (the bins, as the
+    thesis); ``matte``: an (h, w) array, non-zero on the object (default: the mesh's
+    projection)."""
+    if fit != "dipole":
+        raise ArgumentError("fit must be 'dipole' (the monotone cubic Hermite fit of §3.4 is not built yet), got %r"
+                            % (fit,))
+    _check_progress(progress)
+    pixels = _photo(photo)
+    height, width = pixels.shape[:2]
+    light_array = _lights(lights)
+    params = _lib.TranslucencyEstimateParamsStruct()
+    _check(lib.arcus_translucency_estimate_params_init(byref(params)))
+    _camera(params, dict(camera or {}, width=width, height=height))
+    params.ortho_height = to_float(ortho_height, "ortho_height")
+    params.mm_per_unit = to_float(mm_per_unit, "mm_per_unit")
+    params.eta = to_float(eta, "eta")
+    params.exit = to_choice(exit, "exit", _EXITS)
+    params.basis_count = to_int(basis, "basis", 2, 64)
+    params.fit = to_choice(fit_to, "fit_to", _FIT_TO)
+    params.r_max_mm = to_float(r_max_mm, "r_max_mm")
+    params.max_side = to_int(max_side, "max_side", 8, 4096)
+    params.remove_highlights = int(bool(remove_highlights))
+    params.subtract_minimum = int(bool(subtract_minimum))
+    matte_array = None
+    if matte is not None:
+        matte_array = np.ascontiguousarray(np.asarray(matte) != 0, dtype=np.uint8)
+        if matte_array.shape != (height, width):
+            raise ArgumentError("matte must have the photo's shape %s, got %s" % ((height, width), matte_array.shape))
+    t0 = time.perf_counter()
+    with _owned_context(context) as ctx:
+        mesh_handle = _mesh_handle(ctx, mesh)
+        try:
+            def start(callback, job_out):
+                params.progress = callback
+                return lib.arcus_translucency_estimate(ctx._handle, mesh_handle, width, height,
+                                                       _lib.ptr(pixels, c_float),
+                                                       None if matte_array is None else _lib.ptr(matte_array, c_uint8),
+                                                       len(light_array), light_array, byref(params), job_out)
+
+            def read(job):
+                r = _lib.TranslucencyEstimateResultStruct()
+                ctx._check(lib.arcus_job_get_translucency_estimate(job, byref(r)))
+                edges, weights = np.empty(r.basis_count + 1), np.empty((r.basis_count, 3))
+                ctx._check(lib.arcus_job_get_translucency_profile(job, _lib.ptr(edges), _lib.ptr(weights)))
+                bits = c_uint64()
+                ctx._check(lib.arcus_job_get_features(job, byref(bits)))
+                return r, edges, weights, _lib.feature_names(bits.value)
+
+            r, edges, weights, features = ctx._run_job(start, progress, False, "arcus_translucency_estimate",
+                                                       reader=read)
+        finally:
+            lib.arcus_mesh_release(mesh_handle)
+    seconds = time.perf_counter() - t0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # a channel outside diffusion is reported by .dipole.diffusive
+        dipole = Dipole(r.dipole.sigma_a[:], r.dipole.sigma_s_prime[:], r.dipole.eta)
+    return Estimate(
+        dipole=dipole, profile=(edges, weights),
+        condition={"A": np.array(r.condition_a[:]), "AtA": np.array(r.condition_normal[:])},
+        solve={"iterations": np.array(r.iterations[:]), "residual": np.array(r.residual[:]),
+               "dropped_columns": np.array(r.dropped_columns[:]), "fit_error": np.array(r.fit_error[:])},
+        pixels={"width": r.width, "height": r.height, "object": r.object_pixels, "equations": r.equation_pixels},
+        highlight_cut=r.highlight_cut, minimum_subtracted=np.array(r.minimum_subtracted[:]),
+        timings={"geometry": r.geometry_seconds, "histograms": r.histogram_seconds, "solve": r.solve_seconds,
+                 "total": seconds},
+        features=features)
