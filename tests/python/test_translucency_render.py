@@ -254,3 +254,22 @@ def test_a_misaligned_matte_and_an_open_mesh_are_refused(ctx):
     with pytest.raises(arcus.ArgumentError, match="closed"):
         arcus.translucency.estimate_bssrdf(photo, (SPHERE[0], SPHERE[1][1:]), SPHERE_LIGHTS, view, ortho_height=2.2,
                                            mm_per_unit=20, context=ctx)
+
+
+@pytest.mark.end_to_end
+def test_the_command_estimates_what_it_rendered(tmp_path):
+    write_off(tmp_path / "sphere.off", *SPHERE)
+    view = ["--ortho-height", "2.2", "--mm-per-unit", "20", "--light", "0.3", "0.5", "1", "--light", "-1", "0.2",
+            "0.3", "0.3", "--quiet"]
+    r = arcus_command("bssrdf", "render", "sphere.off", "--material", "apple", "--highlight", "0", "--width", "96",
+                      "--height", "96", "-o", "photo.exr", "-o", "photo.png", *view, cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    r = arcus_command("bssrdf", "estimate", "photo.exr", "--mesh", "sphere.off", "--compare", "cmp", *view,
+                      cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert "R_total" in r.stdout and "cond(A)" in r.stdout
+    strip = image.read(tmp_path / "cmp" / "compare.png")
+    assert strip.shape == (96, 3 * 96, 3)
+    assert (tmp_path / "cmp" / "profile.png").stat().st_size > 1000
+    r = arcus_command("bssrdf", "estimate", "photo.png", "--mesh", "sphere.off", *view, cwd=tmp_path)
+    assert r.returncode == 2 and "8-bit" in r.stderr, r.stderr

@@ -1,6 +1,10 @@
 """arcus bssrdf render MESH: a translucent object through the dipole (thesis eq. 3.6–3.8,
 docs/translucency.md), lit by directional lights, framed automatically unless a camera
-is given; the output's extension picks the format (.png, .jpg, .exr, .hdr)."""
+is given; the output's extension picks the format (.png, .jpg, .exr, .hdr).
+
+arcus bssrdf estimate PHOTO --mesh MESH --light ...: the BSSRDF of the object in an HDR
+photograph (thesis §3.3.1): the piecewise-constant profile and the dipole fitted to it,
+with --compare writing photo | re-render | difference and the profile's plot."""
 
 import argparse
 import time
@@ -38,14 +42,7 @@ def add(sub):
     r.add_argument("--light", type=float, nargs="+", action="append", metavar="X",
                    help="a directional light: DX DY DZ toward it, then an irradiance (one value or R G B; default "
                         "1); may be given several times (default: one from (1, 1, 1))")
-    r.add_argument("--mm-per-unit", type=float, default=10.0, help="how long a mesh unit is in mm (default 10)")
-    r.add_argument("--position", type=float, nargs=3, metavar=("X", "Y", "Z"),
-                   help="the camera's position (default: on +z, far enough to see the whole mesh)")
-    r.add_argument("--look-at", type=float, nargs=3, metavar=("X", "Y", "Z"), help="default: the mesh's centre")
-    r.add_argument("--up", type=float, nargs=3, metavar=("X", "Y", "Z"), help="default: +y")
-    r.add_argument("--vfov", type=float, default=30.0, help="vertical field of view, degrees (default 30)")
-    r.add_argument("--ortho", action="store_true", help="an orthographic view framing the mesh, as the thesis' "
-                   "photographs")
+    view_arguments(r)
     r.add_argument("--width", type=int, default=256)
     r.add_argument("--height", type=int, default=256)
     r.add_argument("--exit", choices=("thesis", "normalized"), default="thesis",
@@ -60,6 +57,43 @@ def add(sub):
     r.add_argument("--device", help="an OpenCL device: an index or part of its name")
     r.add_argument("--quiet", action="store_true", help="no progress bar")
     r.set_defaults(run=run_render)
+    add_estimate(verbs)
+
+
+def view_arguments(p):
+    """The flags of a view, shared by render and estimate."""
+    p.add_argument("--mm-per-unit", type=float, default=10.0, help="how long a mesh unit is in mm (default 10)")
+    p.add_argument("--position", type=float, nargs=3, metavar=("X", "Y", "Z"),
+                   help="the camera's position (default: on +z, far enough to see the whole mesh)")
+    p.add_argument("--look-at", type=float, nargs=3, metavar=("X", "Y", "Z"), help="default: the mesh's centre")
+    p.add_argument("--up", type=float, nargs=3, metavar=("X", "Y", "Z"), help="default: +y")
+    p.add_argument("--vfov", type=float, default=30.0, help="vertical field of view, degrees (default 30)")
+    p.add_argument("--ortho", action="store_true", help="an orthographic view framing the mesh, as the thesis' "
+                   "photographs")
+    p.add_argument("--ortho-height", type=float, help="an orthographic view this tall (mesh units)")
+
+
+def add_estimate(verbs):
+    e = verbs.add_parser("estimate", help="estimate the BSSRDF of the object in an HDR photograph",
+                         description=__doc__, formatter_class=_raw(),
+                         epilog="example:\n  arcus bssrdf estimate photo.exr --mesh sphere.ply --light 0.3 0.5 1 "
+                                "--ortho-height 2.2 --mm-per-unit 20 --compare out/")
+    e.add_argument("photo", help="an HDR photograph (.exr, .hdr): linear radiance")
+    e.add_argument("--mesh", required=True, help="the object's mesh file, or a bundled mesh's name")
+    e.add_argument("--light", type=float, nargs="+", action="append", metavar="X",
+                   help="a directional light as for render (default: one from (1, 1, 1))")
+    view_arguments(e)
+    e.add_argument("--matte", help="an image, non-zero on the object (default: the mesh's projection)")
+    e.add_argument("--eta", type=float, default=1.3, help="the medium's index (default 1.3, as the thesis)")
+    e.add_argument("--exit", choices=("thesis", "normalized"), default="thesis")
+    e.add_argument("--basis", type=int, default=24, help="piecewise-constant functions (default 24)")
+    e.add_argument("--fit-to", choices=("image", "profile"), default="image",
+                   help="fit the dipole to the pixels it predicts (default) or to the profile's bins (the thesis)")
+    e.add_argument("--compare", metavar="DIR", help="write DIR/compare.png (photo | re-render | difference) and "
+                   "DIR/profile.png")
+    e.add_argument("--device", help="an OpenCL device: an index or part of its name")
+    e.add_argument("--quiet", action="store_true", help="no progress bar")
+    e.set_defaults(run=run_estimate)
 
 
 def bundled_mesh(name):
@@ -107,7 +141,10 @@ def camera_of(args, vertices):
     position = np.array(args.position if args.position else look_at + [0, 0, fit], float)
     camera = {"position": position, "look_at": look_at, "up": args.up or (0, 1, 0), "vfov_deg": args.vfov,
               "width": args.width, "height": args.height}
-    return camera, 2.2 * radius if args.ortho else 0.0
+    ortho = args.ortho_height if args.ortho_height else 2.2 * radius if args.ortho else 0.0
+    if args.ortho_height is not None and not args.ortho_height > 0:
+        raise ArgumentError("--ortho-height: expected a height > 0, got %g" % args.ortho_height)
+    return camera, ortho
 
 
 def run_render(args):
@@ -141,3 +178,66 @@ def run_render(args):
         mesh_path.stem, args.width, args.height, s["samples"], s["sample_spacing_mm"], args.gather,
         time.monotonic() - started, ", ".join(str(o.resolve()) for o in outputs)))
     return 0
+
+
+def run_estimate(args):
+    from .. import image
+    mesh_path = bundled_mesh(args.mesh)
+    lights = lights_of(args)
+    photo = translucency._photo(args.photo)
+    args.height, args.width = photo.shape[:2]
+    matte = None if args.matte is None else image.read(args.matte).max(axis=2) > 0
+    started = time.monotonic()
+    with Context(_device(args.device)) as ctx:
+        vertices, _ = translucency.read_mesh(mesh_path, context=ctx)
+        camera, ortho = camera_of(args, vertices)
+        with Progress("estimating (distance histograms)", quiet=args.quiet) as bar:
+            est = translucency.estimate_bssrdf(photo, mesh_path, lights, camera, basis=args.basis,
+                                               fit_to=args.fit_to, ortho_height=ortho, mm_per_unit=args.mm_per_unit,
+                                               eta=args.eta, exit=args.exit, matte=matte,
+                                               progress=bar if bar.shown else None, context=ctx)
+        d = est.dipole
+        print("%s: %d × %d pixels used (%d equations), %d functions to %.3g mm, %.1f s" % (
+            Path(args.photo).name, est.pixels["width"], est.pixels["height"], est.pixels["equations"], args.basis,
+            est.profile[0][-1], time.monotonic() - started))
+        rows = [("sigma_a [1/mm]", d.sigma_a), ("sigma_s' [1/mm]", d.sigma_s_prime), ("albedo a'", d.albedo),
+                ("sigma_t' [1/mm]", d.sigma_t_prime), ("l_d [mm]", d.diffuse_length),
+                ("R_total", d.total_reflectance), ("cond(A)", est.condition["A"]),
+                ("QMR iterations", est.solve["iterations"]), ("fit error", est.solve["fit_error"])]
+        print("%-18s %12s %12s %12s" % ("", "R", "G", "B"))
+        for name, values in rows:
+            print("%-18s %12.5g %12.5g %12.5g" % ((name,) + tuple(values)))
+        if args.compare:
+            out = Path(args.compare)
+            out.mkdir(parents=True, exist_ok=True)
+            again = translucency.render(d, mesh_path, lights, camera, ortho_height=ortho,
+                                        mm_per_unit=args.mm_per_unit, exit=args.exit, highlight_deg=0, context=ctx)
+            write_comparison(out, photo, again.image, est, d)
+            print("wrote %s, %s" % ((out / "compare.png").resolve(), (out / "profile.png").resolve()))
+    return 0
+
+
+def write_comparison(out, photo, rendered, est, dipole):
+    """photo | re-render | |difference| side by side (one exposure), and the profile plot."""
+    from .. import image
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    top = float(np.percentile(photo[photo.max(axis=2) > 0].max(axis=1), 99.5)) if (photo > 0).any() else 1.0
+    scale = 0.9 / top if top > 0 else 1.0
+    strip = np.concatenate([photo, rendered, np.abs(photo - rendered)], axis=1) * scale
+    image.write(out / "compare.png", strip)
+    edges, weights = est.profile
+    r = np.linspace(0, edges[-1], 400)[1:]
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for c, colour in enumerate("rgb"):
+        ax.stairs(np.maximum(weights[:, c], 1e-12), edges, color=colour, alpha=0.5,
+                  label="estimate, %s" % "RGB"[c])
+        ax.plot(r, dipole.Rd(r)[:, c], color=colour, label="fitted dipole, %s" % "RGB"[c])
+    ax.set_yscale("log")
+    ax.set_xlabel("r [mm]")
+    ax.set_ylabel("R_d [1/mm²]")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(out / "profile.png", dpi=100)
+    plt.close(fig)
