@@ -77,6 +77,19 @@ class TranslucencyRender : public ArcusTest {
   }
 };
 
+// The 40 × 40 × 10 mm slab the closed-form tests look down on, its top at z = 0.
+void slab_arrays(std::vector<double>* v, std::vector<uint32_t>* t) {
+  const double lo[3] = {-20, -20, -10}, hi[3] = {20, 20, 0};
+  box(lo, hi, v, t);
+}
+
+MeshHandle slab(arcus_context_t* ctx) {
+  std::vector<double> v;
+  std::vector<uint32_t> t;
+  slab_arrays(&v, &t);
+  return MeshHandle(ctx, v, t);  // built in place (C++17): never copied
+}
+
 const std::vector<arcus_directional_light> kOverhead{{{0, 0, 1}, {1, 1, 1}}};
 
 // The exact Fresnel reflectance for unpolarised light from air into η (written here
@@ -94,11 +107,7 @@ double fresnel(double cos_i, double eta) {
 // integral (measured 2e-5 at the automatic spacing, 1/σ′_t) and the float image
 // (6e-8): 1e-3 holds both with room, and a finer spacing must not do worse.
 TEST_F(TranslucencyRender, SlabCentreMatchesClosedForm) {
-  std::vector<double> v;
-  std::vector<uint32_t> t;
-  const double lo[3] = {-20, -20, -10}, hi[3] = {20, 20, 0};
-  box(lo, hi, &v, &t);
-  MeshHandle mesh(ctx(), v, t);
+  MeshHandle mesh = slab(ctx());
   const arcus_dipole d = test_medium();
   // Straight down, then 50° off the normal: E = F_t(θ)·cos θ·E_light (eq. 3.8).
   const double theta = arcus_test::rad(50);
@@ -131,11 +140,7 @@ TEST_F(TranslucencyRender, SlabCentreMatchesClosedForm) {
 // The exit term as an option: NORMALIZED is THESIS divided by 1 − 2·FM1(η), which for
 // η = 1.3 is 0.939 (the hemispherical integral of (1/π)F_t cos θ, done here by Simpson).
 TEST_F(TranslucencyRender, NormalizedExitDividesByTheExitTransmittance) {
-  std::vector<double> v;
-  std::vector<uint32_t> t;
-  const double lo[3] = {-20, -20, -10}, hi[3] = {20, 20, 0};
-  box(lo, hi, &v, &t);
-  MeshHandle mesh(ctx(), v, t);
+  MeshHandle mesh = slab(ctx());
   const arcus_dipole d = test_medium();
   double transmittance = 0;
   const int n = 2000;
@@ -156,11 +161,7 @@ TEST_F(TranslucencyRender, NormalizedExitDividesByTheExitTransmittance) {
 // Energy scaling (§5.2): stretching by s keeps R_total, so a wide slab's centre is
 // unchanged; the thesis' R_d(r/s) multiplies it by s².
 TEST_F(TranslucencyRender, ProfileScalingKeepsOrScalesTheSlab) {
-  std::vector<double> v;
-  std::vector<uint32_t> t;
-  const double lo[3] = {-20, -20, -10}, hi[3] = {20, 20, 0};
-  box(lo, hi, &v, &t);
-  MeshHandle mesh(ctx(), v, t);
+  MeshHandle mesh = slab(ctx());
   const arcus_dipole d = test_medium();
   auto p = looking_down(2, 0.4);
   p.gather = ARCUS_GATHER_BRUTE_FORCE;
@@ -222,31 +223,26 @@ TEST_F(TranslucencyRender, HierarchicalAgreesWithBruteForce) {
 // A light from below reaches the top only through 10 mm of medium (8–20 diffusion
 // lengths: e^{−8} and less); a plate above the slab's centre shadows it.
 TEST_F(TranslucencyRender, LightsFacingAwayAndOccludersGiveNoLight) {
-  std::vector<double> v;
-  std::vector<uint32_t> t;
-  const double lo[3] = {-20, -20, -10}, hi[3] = {20, 20, 0};
-  box(lo, hi, &v, &t);
+  MeshHandle open = slab(ctx());
   {
-    MeshHandle mesh(ctx(), v, t);
     auto p = looking_down(2, 0.4);
-    const Image lit = render(mesh.mesh, test_medium(), kOverhead, p);
-    const Image below = render(mesh.mesh, test_medium(), {{{0, 0.3, -1}, {1, 1, 1}}}, p);
+    const Image lit = render(open.mesh, test_medium(), kOverhead, p);
+    const Image below = render(open.mesh, test_medium(), {{{0, 0.3, -1}, {1, 1, 1}}}, p);
     for (size_t k = 0; k < lit.rgb.size(); ++k) EXPECT_LT(below.rgb[k], 1e-3 * lit.rgb[k]) << k;
   }
   // A 30 × 30 mm plate 30 mm above the centre, wide enough that the light reaching the
   // slab lands 15 mm or more (12+ diffusion lengths: e^{−12}·13 of R_total) from it.
   // The plate is of the same medium (one mesh, one medium): R_d joins any two surface
   // points, so it is put 24+ diffusion lengths away, where what it passes on is nil.
+  std::vector<double> v;
+  std::vector<uint32_t> t;
+  slab_arrays(&v, &t);
   const double plate_lo[3] = {-15, -15, 30}, plate_hi[3] = {15, 15, 30.1};
   box(plate_lo, plate_hi, &v, &t);
   MeshHandle mesh(ctx(), v, t);
   auto p = looking_down(2, 0.4);
   p.camera.position[2] = 20;  // below the plate
   const Image shaded = render(mesh.mesh, test_medium(), kOverhead, p);
-  std::vector<double> open_v;
-  std::vector<uint32_t> open_t;
-  box(lo, hi, &open_v, &open_t);
-  MeshHandle open(ctx(), open_v, open_t);
   const Image lit = render(open.mesh, test_medium(), kOverhead, p);
   for (size_t k = 0; k < lit.rgb.size(); ++k) EXPECT_LT(shaded.rgb[k], 2e-3 * lit.rgb[k]) << k;
 }
@@ -255,8 +251,7 @@ TEST_F(TranslucencyRender, LightsFacingAwayAndOccludersGiveNoLight) {
 TEST_F(TranslucencyRender, InwardWindingIsTurnedOutwards) {
   std::vector<double> v;
   std::vector<uint32_t> t;
-  const double lo[3] = {-20, -20, -10}, hi[3] = {20, 20, 0};
-  box(lo, hi, &v, &t);
+  slab_arrays(&v, &t);
   std::vector<uint32_t> flipped = t;
   for (size_t f = 0; f < flipped.size(); f += 3) std::swap(flipped[f + 1], flipped[f + 2]);
   MeshHandle out(ctx(), v, t), in(ctx(), v, flipped);

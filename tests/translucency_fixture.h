@@ -22,6 +22,8 @@ struct MeshHandle {
     EXPECT_EQ(arcus_mesh_create(ctx, v.size() / 3, v.data(), t.size() / 3, t.data(), &mesh), ARCUS_SUCCESS)
         << arcus_last_error();
   }
+  MeshHandle(const MeshHandle&) = delete;
+  MeshHandle& operator=(const MeshHandle&) = delete;
   ~MeshHandle() {
     if (mesh) arcus_mesh_release(mesh);
   }

@@ -196,14 +196,19 @@ std::vector<double> gather(arcus_context_t* ctx, RenderJob& job, const std::vect
   SliceRange slices;
   slices.progress = p.progress;
   slices.progress_user = p.progress_user;
+  // What both kernels take alike, by the same names.
+  auto bind_inputs = [&](auto& launch, auto args) {
+    using Args = decltype(args);
+    launch.upload(Args::exits, planes, "the exit points");
+    launch.upload(Args::samples, positions, "the irradiance samples");
+    launch.upload(Args::powers, powers, "the samples' powers");
+    launch.upload(Args::channels, channels, "the dipole's terms");
+    launch.bind(Args::sums, &sums);
+    launch.bind_value(Args::stride, static_cast<cl_uint>(stride));
+  };
   if (!tree) {
     Launch<AllArg> launch(ctx, built.program);
-    launch.upload(AllArg::exits, planes, "the exit points");
-    launch.upload(AllArg::samples, positions, "the irradiance samples");
-    launch.upload(AllArg::powers, powers, "the samples' powers");
-    launch.upload(AllArg::channels, channels, "the dipole's terms");
-    launch.bind(AllArg::sums, &sums);
-    launch.bind_value(AllArg::stride, static_cast<cl_uint>(stride));
+    bind_inputs(launch, AllArg{});
     launch.bind_value(AllArg::sample_count, static_cast<cl_uint>(positions.size() / 3));
     // Units: lane groups of points, `groups` of them a work-item.
     slices.total = stride / layout.lanes;
@@ -218,12 +223,7 @@ std::vector<double> gather(arcus_context_t* ctx, RenderJob& job, const std::vect
     job.render.tree_nodes = t.nodes.size();
     DeviceBuffer visits(ctx, stride * sizeof(cl_uint), "the nodes visited");
     Launch<TreeArg> launch(ctx, built.program);
-    launch.upload(TreeArg::exits, planes, "the exit points");
-    launch.upload(TreeArg::samples, positions, "the irradiance samples");
-    launch.upload(TreeArg::powers, powers, "the samples' powers");
-    launch.upload(TreeArg::channels, channels, "the dipole's terms");
-    launch.bind(TreeArg::sums, &sums);
-    launch.bind_value(TreeArg::stride, static_cast<cl_uint>(stride));
+    bind_inputs(launch, TreeArg{});
     launch.upload(TreeArg::nodes, t.nodes, "the samples' BVH");
     launch.upload(TreeArg::clusters, t.clusters, "the BVH's clusters");
     launch.bind_value(TreeArg::max_solid_angle, p.max_solid_angle);
