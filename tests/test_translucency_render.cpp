@@ -310,6 +310,11 @@ TEST_F(TranslucencyRender, BadInputIsRefusedNamingIt) {
   expect_invalid(arcus_translucency_render(ctx(), mesh.mesh, &good, 1, kOverhead.data(), nullptr, &job), "params",
                  "params");
   expect_invalid(arcus_translucency_render(ctx(), mesh.mesh, &good, 1, nullptr, &base, &job), "lights", "lights");
+  // A mesh file that is not there: an I/O error naming it.
+  arcus_mesh_t* missing = nullptr;
+  EXPECT_EQ(arcus_mesh_load(ctx(), "no/such/mesh.ply", &missing), ARCUS_ERROR_IO);
+  EXPECT_TRUE(arcus_test::contains_ci(arcus_context_last_error(ctx()), "no/such/mesh.ply"));
+  EXPECT_EQ(missing, nullptr);
   // Another context's mesh.
   arcus_context_t* other = nullptr;
   ASSERT_EQ(arcus_context_create(ARCUS_DEVICE_DEFAULT, &other), ARCUS_SUCCESS);
