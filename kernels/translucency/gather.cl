@@ -5,6 +5,9 @@
  *                                   per-item loop scalar, lanes make it vector code)
  *   arcus_translucency_gather_tree  the hierarchical method (ARCUS_USE_HIERARCHICAL):
  *                                   one point a work-item, lanes 1, a stack walk */
+#ifndef ARCUS_USE_DIPOLE
+#error "the gather evaluates the dipole: built only with the TRANSLUCENCY_DIPOLE feature"
+#endif
 
 /* Σ over channels c of p_c·R_d,c(r²) into acc[c]. */
 #define ARCUS_ADD_SAMPLE(acc, r2, p0, p1, p2)                                                            \

@@ -9,7 +9,6 @@
 #include "bvh/device_bvh.h"
 #include "core/buffer.h"
 #include "core/error.h"
-#include "core/features.h"
 #include "core/format.h"
 #include "core/kernel_source.h"
 #include "core/launch.h"
@@ -25,10 +24,6 @@
 
 namespace arcus::translucency {
 namespace {
-
-const FeatureTable kTable{"translucency estimate",
-                          {{ARCUS_FEATURE_TRANSLUCENCY_HISTOGRAM, "TRANSLUCENCY_HISTOGRAM", "-D ARCUS_USE_HISTOGRAM"}}};
-const FeatureTableEntry kRegistered(&kTable);
 
 const KernelSource kHistogram{"translucency/histogram",
                               {"common/real.h", "translucency/translucency_desc.h", "translucency/histogram.cl"}, ""};
@@ -128,25 +123,31 @@ double highlight_cut(const std::vector<double>& lum) {
   if (lum.empty()) return INFINITY;
   const double top = *std::max_element(lum.begin(), lum.end());
   if (!(top > 0)) return INFINITY;
-  constexpr int kBins = 256;
-  std::vector<double> h(kBins, 0.0), smooth(kBins, 0.0);
-  for (double y : lum) h[std::min(kBins - 1, int(y / top * kBins))] += 1;
-  for (int k = 0; k < kBins; ++k) {
-    double s = 0;
-    int n = 0;
-    for (int d = -2; d <= 2; ++d)
-      if (k + d >= 0 && k + d < kBins) s += h[size_t(k + d)], ++n;
-    smooth[size_t(k)] = s / n;
-  }
-  const int peak = int(std::max_element(smooth.begin(), smooth.end()) - smooth.begin());
+  constexpr int kBins = 256, kSpan = 9;
+  std::vector<double> h(kBins, 0.0), sum(kBins, 0.0);
+  for (double y : lum) h[size_t(std::min(kBins - 1, int(y / top * kBins)))] += 1;
+  // Counts over 9 neighbouring bins: still counts, so their noise is about their root.
+  for (int k = 0; k < kBins; ++k)
+    for (int d = -kSpan / 2; d <= kSpan / 2; ++d)
+      if (k + d >= 0 && k + d < kBins) sum[size_t(k)] += h[size_t(k + d)];
+  const int peak = int(std::max_element(sum.begin(), sum.end()) - sum.begin());
   int steepest = peak;
   for (int k = peak; k + 1 < kBins; ++k)
-    if (smooth[size_t(k + 1)] - smooth[size_t(k)] < smooth[size_t(steepest + 1)] - smooth[size_t(steepest)])
-      steepest = k;
-  int cut = steepest + 1;
-  while (cut + 1 < kBins && smooth[size_t(cut + 1)] < smooth[size_t(cut)]) ++cut;
-  if (cut + 1 >= kBins) return INFINITY;  // the histogram falls to its end: no highlight bump
-  return top * (cut + 1) / kBins;
+    if (sum[size_t(k + 1)] - sum[size_t(k)] < sum[size_t(steepest + 1)] - sum[size_t(steepest)]) steepest = k;
+  // From the steepest fall on, the lowest count so far is the valley's floor; a bump is
+  // a count above it by more than counting noise allows (8 standard deviations: the
+  // floor is itself the lowest of many noisy counts), and the cut is where the floor
+  // was reached.
+  double floor = sum[size_t(steepest)];
+  int floor_at = steepest;
+  for (int k = steepest + 1; k < kBins; ++k) {
+    if (sum[size_t(k)] < floor) {
+      floor = sum[size_t(k)];
+      floor_at = k;
+    }
+    if (sum[size_t(k)] > floor + 8 * std::sqrt(floor + 1) + 1) return top * (floor_at + 1) / kBins;
+  }
+  return INFINITY;  // it falls to its end: no highlight
 }
 
 std::unique_ptr<EstimateJob> estimate(arcus_context_t* ctx, const geometry::Mesh& mesh, uint32_t width,

@@ -22,11 +22,11 @@ struct EstimateJob : arcus_job_s {
 };
 
 // The luminance above which pixels are highlights (thesis §3.3.1 after Khan et al.
-// 2006): over a 256-bin histogram of the object's luminances, smoothed over 5 bins, the
-// steepest fall (the minimum of the derivative) above the histogram's peak marks where
-// the diffuse pixels end; the cut is the first bin after it where the histogram stops
-// falling (the valley before any highlight's bump), or the end.  INFINITY when nothing
-// lies above it.
+// 2006): over a 256-bin histogram of the object's luminances (counts summed over 5
+// bins), the steepest fall (the minimum of the derivative) above its peak marks where
+// the diffuse pixels end; from there the lowest count so far is the valley's floor, and
+// the first count above it by more than counting noise (3 standard deviations) starts a
+// highlight's bump: the cut.  INFINITY when none rises (no highlight).
 double highlight_cut(const std::vector<double>& luminance);
 
 // Checks every parameter, naming it as the C API does, and estimates.

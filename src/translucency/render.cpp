@@ -10,7 +10,6 @@
 #include "core/buffer.h"
 #include "core/context.h"
 #include "core/error.h"
-#include "core/features.h"
 #include "core/format.h"
 #include "core/kernel_source.h"
 #include "core/launch.h"
@@ -26,12 +25,6 @@
 
 namespace arcus::translucency {
 namespace {
-
-const FeatureTable kTable{"translucency",
-                          {{ARCUS_FEATURE_TRANSLUCENCY_DIPOLE, "TRANSLUCENCY_DIPOLE", "-D ARCUS_USE_DIPOLE"},
-                           {ARCUS_FEATURE_TRANSLUCENCY_HIERARCHICAL, "TRANSLUCENCY_HIERARCHICAL",
-                            "-D ARCUS_USE_HIERARCHICAL"}}};
-const FeatureTableEntry kRegistered(&kTable);
 
 const KernelSource kGather{"translucency/gather",
                            {"common/real.h", "bvh/bvh_desc.h", "translucency/dipole_rd.h",

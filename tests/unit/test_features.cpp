@@ -14,7 +14,7 @@
 namespace {
 
 // Every bit the public headers define (arcus_core.h and each engine's header:
-// arcus_curved.h, arcus_render.h, arcus_ocean.h, arcus_rainbow.h).
+// arcus_curved.h, arcus_render.h, arcus_ocean.h, arcus_rainbow.h, arcus_translucency.h).
 const arcus_features kPublic[] = {
     ARCUS_FEATURE_FLOAT,
     ARCUS_FEATURE_CURVED_STRAIGHT,         ARCUS_FEATURE_CURVED_EULER,           ARCUS_FEATURE_CURVED_RK2,
@@ -25,7 +25,9 @@ const arcus_features kPublic[] = {
     ARCUS_FEATURE_RENDER_GEOMETRY,         ARCUS_FEATURE_RENDER_RECORD_STATE,
     ARCUS_FEATURE_OCEAN_INELASTIC,         ARCUS_FEATURE_OCEAN_BOUNDARIES,       ARCUS_FEATURE_OCEAN_DEPTHS,
     ARCUS_FEATURE_OCEAN_PHOTON_MAP,        ARCUS_FEATURE_OCEAN_BEAM,
-    ARCUS_FEATURE_RAINBOW_IMPLICIT,        ARCUS_FEATURE_RAINBOW_MESH,           ARCUS_FEATURE_RAINBOW_AZIMUTH};
+    ARCUS_FEATURE_RAINBOW_IMPLICIT,        ARCUS_FEATURE_RAINBOW_MESH,           ARCUS_FEATURE_RAINBOW_AZIMUTH,
+    ARCUS_FEATURE_TRANSLUCENCY_DIPOLE,     ARCUS_FEATURE_TRANSLUCENCY_HIERARCHICAL,
+    ARCUS_FEATURE_TRANSLUCENCY_HISTOGRAM};
 
 TEST(FeatureTables, EveryPublicBitIsInExactlyOneTableWithItsOwnNameAndOptions) {
   std::set<arcus_features> bits;
@@ -78,7 +80,7 @@ TEST(FeatureTables, AnUnknownBitIsAnError) {
     EXPECT_NE(std::string(e.what()).find("bit 63"), std::string::npos) << e.what();
   }
   char buffer[64];
-  EXPECT_EQ(arcus_features_to_string(arcus_features(1) << 50, buffer, sizeof buffer), ARCUS_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(arcus_features_to_string(arcus_features(1) << 54, buffer, sizeof buffer), ARCUS_ERROR_INVALID_ARGUMENT);
 }
 
 }  // namespace
