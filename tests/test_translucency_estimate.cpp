@@ -118,6 +118,47 @@ TEST_F(TranslucencyEstimate, TheSameInputGivesTheSameEstimate) {
   EXPECT_EQ(a.width, 50u);  // 200 / 4: box-filtered down by a whole factor to at most 64
 }
 
+// The system and its sources are read back per channel (tests/python/test_translucency_system.py
+// checks their values against NumPy); a fourth channel is refused naming it.
+TEST_F(TranslucencyEstimate, TheSystemIsReadBackPerChannel) {
+  std::vector<double> v;
+  std::vector<uint32_t> t;
+  icosphere(2, &v, &t);
+  MeshHandle mesh(ctx(), v, t);
+  arcus_dipole d{};
+  ASSERT_EQ(arcus_translucency_dipole_from_material("skimmilk", &d), ARCUS_SUCCESS);
+  const std::vector<float> rgb = photo(mesh.mesh, d);
+  auto e = estimate_params(1.3);
+  e.max_side = 32;
+  e.basis_count = 8;
+  arcus_job_t* job = nullptr;
+  ASSERT_EQ(arcus_translucency_estimate(ctx(), mesh.mesh, kSide, kSide, rgb.data(), nullptr, kLights.size(),
+                                        kLights.data(), &e, &job),
+            ARCUS_SUCCESS)
+      << last_error();
+  arcus_translucency_estimate_result r{};
+  ASSERT_EQ(arcus_job_get_translucency_estimate(job, &r), ARCUS_SUCCESS);
+  const size_t n = r.equation_pixels, s = 2 * size_t(r.object_pixels);
+  std::vector<double> a(n * 8), b(n), x(8), rows(3 * n), sources(3 * s), weights(3 * s), near(3 * n);
+  for (uint32_t c = 0; c < 3; ++c) {
+    ASSERT_EQ(arcus_job_get_translucency_system(job, c, a.data(), b.data(), x.data()), ARCUS_SUCCESS);
+    double predicted = 0, measured = 0;  // A x against b: the image error the result reports
+    for (size_t i = 0; i < n; ++i) {
+      double p = 0;
+      for (size_t h = 0; h < 8; ++h) p += a[i * 8 + h] * x[h];
+      predicted += std::fabs(p - b[i]);
+      measured += std::fabs(b[i]);
+    }
+    EXPECT_NEAR(predicted / measured, r.image_error[c], 1e-12);
+  }
+  ASSERT_EQ(arcus_job_get_translucency_sources(job, rows.data(), sources.data(), weights.data(), near.data()),
+            ARCUS_SUCCESS);
+  EXPECT_EQ(r.basis, ARCUS_BASIS_PIECEWISE_CONSTANT);
+  EXPECT_GT(r.near_radius_mm, 0);
+  expect_invalid(arcus_job_get_translucency_system(job, 3, a.data(), nullptr, nullptr), "channel", "channel 3");
+  arcus_job_release(job);
+}
+
 TEST_F(TranslucencyEstimate, BadInputIsRefusedNamingIt) {
   std::vector<double> v;
   std::vector<uint32_t> t;
@@ -148,6 +189,17 @@ TEST_F(TranslucencyEstimate, BadInputIsRefusedNamingIt) {
   auto e = good;
   e.basis_count = 1;
   attempt(rgb, nullptr, kLights, e, "params->basis_count");
+  e = good;
+  e.basis = ARCUS_BASIS_LEGENDRE + 1;
+  attempt(rgb, nullptr, kLights, e, "params->basis");
+  e = good;
+  e.tikhonov = -1e-3;
+  attempt(rgb, nullptr, kLights, e, "params->tikhonov");
+  e.tikhonov = NAN;
+  attempt(rgb, nullptr, kLights, e, "params->tikhonov");
+  e = good;
+  e.nonnegative = 2;
+  attempt(rgb, nullptr, kLights, e, "params->nonnegative");
   e = good;
   e.eta = 0.9;
   attempt(rgb, nullptr, kLights, e, "params->eta");

@@ -185,9 +185,14 @@ ARCUS_API arcus_status arcus_job_get_translucency_image(arcus_job_t* job, float*
  * preconditioned, near-empty columns dropped), then fitted by a dipole. */
 #define ARCUS_FEATURE_TRANSLUCENCY_HISTOGRAM (UINT64_C(1) << 50) /* the distance histograms of eq. 3.16 */
 
-/* The basis functions B_h of eq. 3.14 over [0, r_max) (Table 3.2's families). */
+/* The basis functions B_h of eq. 3.14 over x = r / r_max in [0, 1) (Table 3.2's
+ * families), each scaled to a largest |value| of 1 (src/translucency/basis.h). */
 typedef enum arcus_profile_basis {
-  ARCUS_BASIS_PIECEWISE_CONSTANT = 0 /* m equal bins: the thesis' choice (default)     */
+  ARCUS_BASIS_PIECEWISE_CONSTANT = 0, /* m equal bins: the thesis' choice (default)       */
+  ARCUS_BASIS_HAAR = 1,               /* the box, then Haar wavelets level by level       */
+  ARCUS_BASIS_GAUSSIAN = 2,           /* zero-mean, widths geometric from r_max/m to r_max */
+  ARCUS_BASIS_HERMITE = 3,            /* Hermite polynomials H_h(2x − 1)                  */
+  ARCUS_BASIS_LEGENDRE = 4            /* Legendre polynomials P_h(2x − 1)                 */
 } arcus_profile_basis;
 
 /* What the dipole is fitted to, per channel, by Levenberg–Marquardt (src/translucency/fit.h). */
@@ -212,6 +217,9 @@ typedef struct arcus_translucency_estimate_params {
   int32_t fit;               /* arcus_profile_fit                                        */
   arcus_progress_callback progress; /* after each slice of the histograms; may be NULL   */
   void* progress_user;
+  double tikhonov;           /* λ >= 0: adds λ × the mean diagonal of AᵀA to its diagonal
+                                (0: off, as the thesis)                                  */
+  int32_t nonnegative;       /* 1: weights >= 0 (Lawson–Hanson over QMR; 0: off, as the thesis) */
 } arcus_translucency_estimate_params;
 
 /* Defaults: the render defaults' camera, 1 mm per unit, η 1.3, 24 piecewise-constant
@@ -249,13 +257,31 @@ typedef struct arcus_translucency_estimate_result {
   double geometry_seconds;       /* camera rays, back points, irradiance maps             */
   double histogram_seconds;      /* the kernel of eq. 3.16                                 */
   double solve_seconds;          /* normal equations, QMR, condition numbers, the fit      */
+  int32_t basis;                 /* arcus_profile_basis                                     */
+  double near_radius_mm;         /* ρ: within it a row's own irradiance over a flat disc
+                                    stands for the sources (docs/translucency.md)           */
+  double image_error[3];         /* Σ|A x − b| / Σ b: the solve's re-render of the equation
+                                    pixels against them (Table 3.2's "error")              */
 } arcus_translucency_estimate_result;
 
 ARCUS_API arcus_status arcus_job_get_translucency_estimate(arcus_job_t* job,
                                                            arcus_translucency_estimate_result* result);
 /* The estimated profile: edges (basis_count + 1 distances, mm) and weights (basis_count
- * × 3: R_d per mm² on each bin, per channel); either pointer may be NULL. */
+ * × 3: R_d per mm², Σ_h w_h B_h averaged over each bin's area, per channel); either
+ * pointer may be NULL. */
 ARCUS_API arcus_status arcus_job_get_translucency_profile(arcus_job_t* job, double* edges, double* weights);
+/* One channel's linear system (eq. 3.16–3.18), for checking it: `a` equation_pixels ×
+ * basis_count (row-major, per mm²), `b` equation_pixels (the pixels over the exit term),
+ * `x` basis_count (the weights solved for); any pointer may be NULL. */
+ARCUS_API arcus_status arcus_job_get_translucency_system(arcus_job_t* job, uint32_t channel, double* a, double* b,
+                                                         double* x);
+/* What the system is assembled from, in mm: `rows` equation_pixels × 3 (the equation
+ * pixels' front points), `sources` 2·object_pixels × 3 (every object pixel's front point,
+ * then its back point), `source_weights` 2·object_pixels × 3 (E·ΔA, per channel),
+ * `near_irradiance` equation_pixels × 3 (E_i, the disc within near_radius_mm); any
+ * pointer may be NULL. */
+ARCUS_API arcus_status arcus_job_get_translucency_sources(arcus_job_t* job, double* rows, double* sources,
+                                                          double* source_weights, double* near_irradiance);
 
 #ifdef __cplusplus
 }

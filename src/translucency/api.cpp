@@ -269,4 +269,27 @@ arcus_status arcus_job_get_translucency_profile(arcus_job_t* job, double* edges,
   });
 }
 
+arcus_status arcus_job_get_translucency_system(arcus_job_t* job, uint32_t channel, double* a, double* b, double* x) {
+  return on_job<EstimateJob>(job, "a translucency estimate", [&](EstimateJob* j) {
+    require(channel < 3, "channel = " + std::to_string(channel) + " is not 0, 1 or 2");
+    const size_t n = j->result.equation_pixels, m = j->result.basis_count;
+    auto part = [&](const std::vector<double>& all, size_t size) {
+      return std::vector<double>(all.begin() + long(channel * size), all.begin() + long((channel + 1) * size));
+    };
+    copy_out(part(j->a, n * m), a);
+    copy_out(part(j->b, n), b);
+    copy_out(part(j->x, m), x);
+  });
+}
+
+arcus_status arcus_job_get_translucency_sources(arcus_job_t* job, double* rows, double* sources,
+                                                double* source_weights, double* near_irradiance) {
+  return on_job<EstimateJob>(job, "a translucency estimate", [&](EstimateJob* j) {
+    copy_out(j->rows, rows);
+    copy_out(j->sources, sources);
+    copy_out(j->source_weights, source_weights);
+    copy_out(j->near, near_irradiance);
+  });
+}
+
 }  // extern "C"

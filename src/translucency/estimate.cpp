@@ -12,6 +12,7 @@
 #include "core/format.h"
 #include "core/kernel_source.h"
 #include "core/launch.h"
+#include "translucency/basis.h"
 #include "translucency/dipole.h"
 #include "translucency/fit.h"
 #include "translucency/least_squares.h"
@@ -44,8 +45,12 @@ void check_params(const arcus_translucency_estimate_params& p, uint32_t width, u
   check_eta(p.eta, "params->eta");
   require(p.basis_count >= 2 && p.basis_count <= 64,
           "params->basis_count = " + std::to_string(p.basis_count) + " is not 2..64");
-  require(p.basis == ARCUS_BASIS_PIECEWISE_CONSTANT,
-          "params->basis = " + std::to_string(p.basis) + " is not ARCUS_BASIS_PIECEWISE_CONSTANT (0)");
+  require(p.basis >= ARCUS_BASIS_PIECEWISE_CONSTANT && p.basis <= ARCUS_BASIS_LEGENDRE,
+          "params->basis = " + std::to_string(p.basis) + " is not an arcus_profile_basis (0..4)");
+  require(std::isfinite(p.tikhonov) && p.tikhonov >= 0,
+          "params->tikhonov = " + number(p.tikhonov) + " is not a finite λ >= 0 (0: off)");
+  require(p.nonnegative == 0 || p.nonnegative == 1,
+          "params->nonnegative = " + std::to_string(p.nonnegative) + " is not 0 or 1");
   require(std::isfinite(p.r_max_mm) && p.r_max_mm >= 0,
           "params->r_max_mm = " + number(p.r_max_mm) + " is not a finite distance >= 0 (0: the object's diagonal)");
   require(p.max_side >= 8 && p.max_side <= 4096, "params->max_side = " + std::to_string(p.max_side) + " is not 8..4096");
@@ -115,6 +120,27 @@ double diameter(const Surface& s) {
 // covers at least half of it.
 bool in_object_of(const Views& front, const std::vector<double>& matte_share, const uint8_t* matte, size_t px) {
   return front.triangle[px] >= 0 && (!matte || matte_share[px] >= 0.5);
+}
+
+// The profile Σ_h x_h B_h (constant on each of `bins` fine bins) averaged over the area
+// of each of m equal bins: the rings' overlaps, in closed form.
+std::vector<double> bin_averages(const std::vector<double>& basis, uint32_t m, uint32_t bins,
+                                 const std::vector<double>& x) {
+  std::vector<double> sum(m, 0.0);
+  for (uint32_t k = 0; k < bins; ++k) {
+    double value = 0;
+    for (uint32_t h = 0; h < m; ++h) value += basis[size_t(k) * m + h] * x[h];
+    const double lo = double(k) / bins, hi = double(k + 1) / bins;
+    for (uint32_t j = uint32_t(lo * m); j < m && double(j) / m < hi; ++j) {
+      const double from = std::max(lo, double(j) / m), to = std::min(hi, double(j + 1) / m);
+      if (to > from) sum[j] += value * (to * to - from * from);
+    }
+  }
+  for (uint32_t j = 0; j < m; ++j) {
+    const double lo = double(j) / m, hi = double(j + 1) / m;
+    sum[j] /= hi * hi - lo * lo;
+  }
+  return sum;
 }
 
 }  // namespace
@@ -293,8 +319,7 @@ std::unique_ptr<EstimateJob> estimate(arcus_context_t* ctx, const geometry::Mesh
 
   // The histograms, then per channel A (bins summed into basis functions) and b.
   const auto histogram_start = std::chrono::steady_clock::now();
-  const uint32_t m = p.basis_count;
-  const uint32_t per_basis = std::min<uint32_t>(8, ARCUS_MAX_HISTOGRAM_BINS / m), bins = m * per_basis;
+  const uint32_t m = p.basis_count, bins = fine_bins_for(p.basis, m);
   res.r_max_mm = p.r_max_mm > 0 ? p.r_max_mm : diameter(surface);
   const std::vector<double> hist =
       histograms(ctx, *job, rows, source_points, weights, bins, res.r_max_mm / bins, p, cancelled);
@@ -317,25 +342,58 @@ std::unique_ptr<EstimateJob> estimate(arcus_context_t* ctx, const geometry::Mesh
   for (uint32_t k = 0; k <= bins; ++k) fine_edges[k] = res.r_max_mm * k / bins;
   job->edges.resize(m + 1);
   for (uint32_t k = 0; k <= m; ++k) job->edges[k] = res.r_max_mm * k / m;
+  // A column of A is the fine bins weighted by B_h at their middles (basis.h); within ρ
+  // the disc's rings, weighted the same way.
+  const std::vector<double> basis = basis_matrix(p.basis, m, bins);
+  std::vector<double> near_disc(m, 0.0);
+  for (uint32_t k = 0; k < near_bins; ++k)
+    for (uint32_t h = 0; h < m; ++h)
+      near_disc[h] += M_PI * (fine_edges[k + 1] * fine_edges[k + 1] - fine_edges[k] * fine_edges[k]) *
+                      basis[size_t(k) * m + h];
+  job->rows = rows;
+  job->sources = source_points;
+  job->source_weights = weights;
+  job->near.assign(n * 3, 0.0);
+  job->a.assign(3 * n * m, 0.0);
+  job->b.assign(3 * n, 0.0);
+  job->x.assign(3 * size_t(m), 0.0);
   job->weights.assign(size_t(m) * 3, 0.0);
+  LeastSquaresOptions options;
+  options.tikhonov = p.tikhonov;
+  options.nonnegative = p.nonnegative != 0;
   for (int c = 0; c < 3; ++c) {
-    std::vector<double> a(n * m, 0.0), b(n), near(n);
+    double* a = &job->a[size_t(c) * n * m];
+    double* b = &job->b[size_t(c) * n];
+    std::vector<double> near(n);
     for (size_t i = 0; i < n; ++i) {
       const size_t px = equations[i];
       const double cos_o = std::fabs(dot(vec3(&front.normals[3 * px]), vec3(&front.toward_eye[3 * px])));
       b[i] = (rgb[3 * px + c] - res.minimum_subtracted[c]) /
              (exit_scale * (1 - arcus_fresnel_reflectance(cos_o, 1.0, p.eta)));
-      for (uint32_t k = near_bins; k < bins; ++k) a[i * m + k / per_basis] += hist[(i * bins + k) * 4 + size_t(c)];
       const size_t own = front_source[px];
       near[i] = weights[3 * own + size_t(c)] / source_area[own];
-      for (uint32_t h = 0; h < m; ++h) {
-        const double lo = std::min(near_radius, job->edges[h]), hi = std::min(near_radius, job->edges[h + 1]);
-        a[i * m + h] += near[i] * M_PI * (hi * hi - lo * lo);
+      job->near[3 * i + size_t(c)] = near[i];
+      for (uint32_t h = 0; h < m; ++h) a[i * m + h] = near[i] * near_disc[h];
+      for (uint32_t k = near_bins; k < bins; ++k) {
+        const double in_bin = hist[(i * bins + k) * 4 + size_t(c)];
+        if (in_bin == 0) continue;
+        for (uint32_t h = 0; h < m; ++h) a[i * m + h] += in_bin * basis[size_t(k) * m + h];
       }
     }
+    const std::vector<double> a_channel(a, a + n * m), b_channel(b, b + n);
     LeastSquaresReport report;
-    const std::vector<double> x = solve_least_squares(a, n, m, b, LeastSquaresOptions{}, &report);
-    for (uint32_t k = 0; k < m; ++k) job->weights[size_t(k) * 3 + size_t(c)] = x[k];
+    const std::vector<double> x = solve_least_squares(a_channel, n, m, b_channel, options, &report);
+    std::copy(x.begin(), x.end(), job->x.begin() + size_t(c) * m);
+    const std::vector<double> averages = bin_averages(basis, m, bins, x);
+    for (uint32_t k = 0; k < m; ++k) job->weights[size_t(k) * 3 + size_t(c)] = averages[k];
+    double misfit = 0, total = 0;
+    for (size_t i = 0; i < n; ++i) {
+      double predicted = 0;
+      for (uint32_t h = 0; h < m; ++h) predicted += a[i * m + h] * x[h];
+      misfit += std::fabs(predicted - b[i]);
+      total += std::fabs(b[i]);
+    }
+    res.image_error[c] = total > 0 ? misfit / total : 0;
     res.iterations[c] = report.iterations;
     res.residual[c] = report.residual;
     res.condition_a[c] = report.condition_a;
@@ -343,11 +401,11 @@ std::unique_ptr<EstimateJob> estimate(arcus_context_t* ctx, const geometry::Mesh
     res.dropped_columns[c] = static_cast<uint32_t>(report.dropped.size());
     DipoleFit fit;
     if (p.fit == ARCUS_FIT_PROFILE) {
-      fit = fit_to_profile(job->edges, x, p.eta);
+      fit = fit_to_profile(job->edges, averages, p.eta);
     } else {
       std::vector<double> channel_hist(n * bins);
       for (size_t i = 0; i < n * bins; ++i) channel_hist[i] = hist[i * 4 + size_t(c)];
-      fit = fit_to_image(fine_edges, channel_hist, near_bins, near, near_radius, b, p.eta);
+      fit = fit_to_image(fine_edges, channel_hist, near_bins, near, near_radius, b_channel, p.eta);
     }
     res.dipole.sigma_a[c] = fit.channel.sigma_a;
     res.dipole.sigma_s_prime[c] = fit.channel.sigma_s_prime;
@@ -361,6 +419,8 @@ std::unique_ptr<EstimateJob> estimate(arcus_context_t* ctx, const geometry::Mesh
   res.object_pixels = static_cast<uint32_t>(object.size());
   res.equation_pixels = static_cast<uint32_t>(n);
   res.basis_count = m;
+  res.basis = p.basis;
+  res.near_radius_mm = near_radius;
   job->count = n;
   job->stats.total_seconds = seconds_since(start);
   return job;

@@ -18,7 +18,10 @@ namespace arcus::translucency {
 struct EstimateJob : arcus_job_s {
   explicit EstimateJob(arcus_context_t* ctx) : arcus_job_s(ctx, "translucency estimate") {}
   arcus_translucency_estimate_result result{};
-  std::vector<double> edges, weights;  // m + 1; m × 3
+  std::vector<double> edges, weights;  // m + 1; m × 3 (the profile's bin averages)
+  // The system, per channel: a (3 × n × m), b (3 × n), x (3 × m); and what it is
+  // assembled from: rows (n × 3), sources and their weights (2|𝕆| × 3), near (n × 3).
+  std::vector<double> a, b, x, rows, sources, source_weights, near;
 };
 
 // The luminance above which pixels are highlights (thesis §3.3.1 after Khan et al.

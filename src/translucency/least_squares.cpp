@@ -107,6 +107,73 @@ Vec qmr(const Vec& m, const Vec& f, const Vec& diagonal, const LeastSquaresOptio
   return x;
 }
 
+// M x = f by Jacobi-preconditioned QMR, iterations added to the report's.
+Vec solve_system(const Vec& m, const Vec& f, const LeastSquaresOptions& o, LeastSquaresReport* rep) {
+  const size_t n = f.size();
+  Vec diagonal(n);
+  for (size_t p = 0; p < n; ++p) diagonal[p] = m[p * n + p];
+  LeastSquaresReport step;
+  const Vec x = qmr(m, f, diagonal, o, &step);
+  rep->iterations += step.iterations;
+  rep->converged = step.converged;
+  return x;
+}
+
+// min |A x − b|² subject to x >= 0, from the normal equations M = AᵀA, f = Aᵀb: Lawson
+// & Hanson's active set ("Solving Least Squares Problems", 1974, ch. 23), each passive
+// set's unconstrained solve by QMR on its rows and columns of M.
+Vec nonnegative_solve(const Vec& m, const Vec& f, const LeastSquaresOptions& o, LeastSquaresReport* rep) {
+  const size_t n = f.size();
+  Vec x(n, 0.0);
+  std::vector<bool> passive(n, false);
+  double scale = 0;
+  for (double v : f) scale = std::max(scale, std::fabs(v));
+  const double tolerance = 1e-12 * scale;
+  auto gradient = [&] {  // f − M x: the descent direction of the cost
+    Vec g = f;
+    const Vec mx = multiply(m, x);
+    for (size_t p = 0; p < n; ++p) g[p] -= mx[p];
+    return g;
+  };
+  for (size_t outer = 0; outer < 3 * n; ++outer) {
+    const Vec g = gradient();
+    size_t best = n;
+    for (size_t p = 0; p < n; ++p)
+      if (!passive[p] && g[p] > tolerance && (best == n || g[p] > g[best])) best = p;
+    if (best == n) break;  // the Karush–Kuhn–Tucker conditions hold
+    passive[best] = true;
+    for (size_t inner = 0; inner < 3 * n; ++inner) {
+      std::vector<size_t> set;
+      for (size_t p = 0; p < n; ++p)
+        if (passive[p]) set.push_back(p);
+      const size_t k = set.size();
+      Vec sub(k * k), rhs(k);
+      for (size_t a = 0; a < k; ++a) {
+        rhs[a] = f[set[a]];
+        for (size_t b = 0; b < k; ++b) sub[a * k + b] = m[set[a] * n + set[b]];
+      }
+      const Vec z = solve_system(sub, rhs, o, rep);
+      // Step from x toward z as far as every weight stays >= 0.
+      double step = 1;
+      size_t blocking = k;
+      for (size_t a = 0; a < k; ++a)
+        if (z[a] <= 0 && x[set[a]] / (x[set[a]] - z[a]) < step) {
+          step = x[set[a]] / (x[set[a]] - z[a]);
+          blocking = a;
+        }
+      for (size_t a = 0; a < k; ++a) x[set[a]] += step * (z[a] - x[set[a]]);
+      if (blocking == k) break;
+      x[set[blocking]] = 0;  // the weight that reached 0 first leaves the passive set
+      for (size_t a = 0; a < k; ++a)
+        if (x[set[a]] <= 0) {
+          x[set[a]] = 0;
+          passive[set[a]] = false;
+        }
+    }
+  }
+  return x;
+}
+
 }  // namespace
 
 std::vector<double> symmetric_eigenvalues(std::vector<double> m, size_t n) {
@@ -171,17 +238,28 @@ std::vector<double> solve_least_squares(const std::vector<double>& a, size_t row
       for (size_t q = 0; q < n; ++q) normal[p * n + q] += row[kept[p]] * row[kept[q]];
     }
   }
-  Vec diagonal(n);
-  for (size_t p = 0; p < n; ++p) diagonal[p] = normal[p * n + p];
-  const Vec solution = qmr(normal, rhs, diagonal, options, &rep);
+  const Vec plain_eigen = symmetric_eigenvalues(normal, n);
+  rep.condition_a = plain_eigen.front() > 0 ? std::sqrt(plain_eigen.back() / plain_eigen.front()) : INFINITY;
+  if (options.tikhonov > 0) {
+    double mean = 0;
+    for (size_t p = 0; p < n; ++p) mean += normal[p * n + p] / double(n);
+    for (size_t p = 0; p < n; ++p) normal[p * n + p] += options.tikhonov * mean;
+  }
+  const Vec solution = options.nonnegative ? nonnegative_solve(normal, rhs, options, &rep)
+                                           : solve_system(normal, rhs, options, &rep);
   const Vec fitted = multiply(normal, solution);
   Vec residual(n);
   for (size_t p = 0; p < n; ++p) residual[p] = rhs[p] - fitted[p];
   const double rhs_norm = norm(rhs);
+  if (options.nonnegative) {
+    // The constrained optimum leaves a gradient on the clamped weights: measure the
+    // residual on the free ones (the equations that still hold).
+    for (size_t p = 0; p < n; ++p)
+      if (solution[p] == 0) residual[p] = 0;
+  }
   rep.residual = rhs_norm > 0 ? norm(residual) / rhs_norm : 0;
-  const Vec eigen = symmetric_eigenvalues(normal, n);
+  const Vec eigen = options.tikhonov > 0 ? symmetric_eigenvalues(normal, n) : plain_eigen;
   rep.condition_normal = eigen.front() > 0 ? eigen.back() / eigen.front() : INFINITY;
-  rep.condition_a = std::sqrt(rep.condition_normal);
   for (size_t p = 0; p < n; ++p) x[kept[p]] = solution[p];
   if (report) *report = rep;
   return x;

@@ -12,11 +12,11 @@
 namespace arcus::translucency {
 
 struct LeastSquaresReport {
-  int iterations = 0;           // QMR iterations taken
+  int iterations = 0;           // QMR iterations taken (summed over the active-set steps)
   bool converged = false;       // the relative residual fell below the tolerance
   double residual = 0;          // |Aᵀb − AᵀA x| / |Aᵀb| on the kept columns
   double condition_a = 0;       // 2-norm condition number of A's kept columns, sqrt(λmax/λmin)
-  double condition_normal = 0;  // of AᵀA: λmax/λmin (the square of condition_a)
+  double condition_normal = 0;  // of the normal matrix solved, λmax/λmin (condition_a² without Tikhonov)
   std::vector<size_t> dropped;  // columns left out (their weight is 0)
 };
 
@@ -24,6 +24,8 @@ struct LeastSquaresOptions {
   double tolerance = 1e-12;        // on the relative residual of the normal equations
   int max_iterations = 1000;
   double column_threshold = 1e-12; // a column whose norm is below this × the largest is dropped
+  double tikhonov = 0;             // λ: AᵀA + λ·mean(diag AᵀA)·I (0: off, as the thesis)
+  bool nonnegative = false;        // x >= 0 by Lawson–Hanson's active set (off, as the thesis)
 };
 
 // x (cols values) for the row-major rows × cols matrix `a` and `b` (rows values).

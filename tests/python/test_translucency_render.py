@@ -273,3 +273,9 @@ def test_the_command_estimates_what_it_rendered(tmp_path):
     assert (tmp_path / "cmp" / "profile.png").stat().st_size > 1000
     r = arcus_command("bssrdf", "estimate", "photo.png", "--mesh", "sphere.off", *view, cwd=tmp_path)
     assert r.returncode == 2 and "8-bit" in r.stderr, r.stderr
+    r = arcus_command("bssrdf", "estimate", "photo.exr", "--mesh", "sphere.off", "--family", "legendre", "--basis",
+                      "12", "--nonnegative", "--tikhonov", "1e-4", *view, cwd=tmp_path)
+    assert r.returncode == 0 and "12 legendre functions" in r.stdout and "image error" in r.stdout, r.stderr
+    r = arcus_command("bssrdf", "estimate", "photo.exr", "--mesh", "sphere.off", "--tikhonov", "-1", *view,
+                      cwd=tmp_path)
+    assert r.returncode == 2 and "tikhonov" in r.stderr, r.stderr

@@ -2,7 +2,9 @@
 // references written here: an exactly consistent system gives back its x; a noisy one
 // the least-squares x of a dense Cholesky solve of the normal equations; empty columns
 // are dropped; badly scaled columns still converge (the Jacobi preconditioner); the
-// condition numbers meet closed forms and the Hilbert matrix's tabulated value.
+// condition numbers meet closed forms and the Hilbert matrix's tabulated value;
+// Tikhonov's option is the dense ridge solve; the non-negative one meets the
+// Karush–Kuhn–Tucker conditions.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -33,15 +35,16 @@ std::vector<double> times(const std::vector<double>& a, size_t rows, size_t cols
   return b;
 }
 
-// The least-squares x by Cholesky on AᵀA x = Aᵀb: the dense reference.
+// The least-squares x by Cholesky on (AᵀA + ridge·I) x = Aᵀb: the dense reference.
 std::vector<double> dense_least_squares(const std::vector<double>& a, size_t rows, size_t cols,
-                                        const std::vector<double>& b) {
+                                        const std::vector<double>& b, double ridge = 0) {
   std::vector<double> m(cols * cols, 0.0), f(cols, 0.0), l(cols * cols, 0.0);
   for (size_t i = 0; i < rows; ++i)
     for (size_t p = 0; p < cols; ++p) {
       f[p] += a[i * cols + p] * b[i];
       for (size_t q = 0; q < cols; ++q) m[p * cols + q] += a[i * cols + p] * a[i * cols + q];
     }
+  for (size_t p = 0; p < cols; ++p) m[p * cols + p] += ridge;
   for (size_t j = 0; j < cols; ++j) {
     double s = m[j * cols + j];
     for (size_t k = 0; k < j; ++k) s -= l[j * cols + k] * l[j * cols + k];
@@ -140,6 +143,61 @@ TEST(TranslucencySolve, ConditionNumbersMeetClosedForms) {
   EXPECT_NEAR(eigen.back() / eigen.front(), 1.495105864e7, 1e-3 * 1.495105864e7);
   solve_least_squares(hilbert, h, h, std::vector<double>(h, 1.0), {}, &report);
   EXPECT_NEAR(report.condition_a, 1.495105864e7, 1e-3 * 1.495105864e7);
+}
+
+// λ adds λ × the mean diagonal of AᵀA to its diagonal: the dense ridge solve.
+TEST(TranslucencySolve, TikhonovIsTheDenseRidgeSolution) {
+  const size_t rows = 200, cols = 20;
+  const std::vector<double> a = random_matrix(rows, cols, 7), b = random_matrix(rows, 1, 8);
+  double mean_diagonal = 0;
+  for (size_t j = 0; j < cols; ++j)
+    for (size_t i = 0; i < rows; ++i) mean_diagonal += a[i * cols + j] * a[i * cols + j] / cols;
+  LeastSquaresOptions options;
+  options.tikhonov = 0.05;
+  LeastSquaresReport report;
+  const std::vector<double> x = solve_least_squares(a, rows, cols, b, options, &report);
+  const std::vector<double> reference = dense_least_squares(a, rows, cols, b, 0.05 * mean_diagonal);
+  for (size_t j = 0; j < cols; ++j) EXPECT_NEAR(x[j], reference[j], 1e-10) << j;
+  const std::vector<double> plain = dense_least_squares(a, rows, cols, b);
+  double shrunk = 0, unshrunk = 0;
+  for (size_t j = 0; j < cols; ++j) {
+    shrunk += x[j] * x[j];
+    unshrunk += plain[j] * plain[j];
+  }
+  EXPECT_LT(shrunk, unshrunk);  // the ridge shrinks the weights
+}
+
+// min |Ax − b|² over x >= 0 is the x where (Karush–Kuhn–Tucker) the gradient
+// g = Aᵀ(b − Ax) vanishes on the positive weights and is <= 0 on the zero ones.  A
+// truth with negative entries and noise makes several constraints bind.
+TEST(TranslucencySolve, NonNegativeWeightsMeetTheOptimalityConditions) {
+  const size_t rows = 300, cols = 24;
+  const std::vector<double> a = random_matrix(rows, cols, 9), noise = random_matrix(rows, 1, 10);
+  std::vector<double> truth(cols);
+  for (size_t j = 0; j < cols; ++j) truth[j] = std::sin(0.7 * j);
+  std::vector<double> b = times(a, rows, cols, truth);
+  for (size_t i = 0; i < rows; ++i) b[i] += 0.1 * noise[i];
+  LeastSquaresOptions options;
+  options.nonnegative = true;
+  LeastSquaresReport report;
+  const std::vector<double> x = solve_least_squares(a, rows, cols, b, options, &report);
+  const std::vector<double> fitted = times(a, rows, cols, x);
+  size_t zeros = 0;
+  double scale = 0;
+  for (size_t j = 0; j < cols; ++j)
+    for (size_t i = 0; i < rows; ++i) scale = std::max(scale, std::fabs(a[i * cols + j] * b[i]));
+  for (size_t j = 0; j < cols; ++j) {
+    double g = 0;
+    for (size_t i = 0; i < rows; ++i) g += a[i * cols + j] * (b[i] - fitted[i]);
+    EXPECT_GE(x[j], 0.0) << j;
+    // 1e-9 of the largest term of Aᵀb: QMR's residual (1e-12) times the condition
+    // number of these random 300 × 24 systems (a few).
+    if (x[j] > 0) EXPECT_NEAR(g, 0.0, 1e-9 * scale) << j;
+    else EXPECT_LE(g, 1e-9 * scale) << j;
+    zeros += x[j] == 0;
+  }
+  EXPECT_GE(zeros, 6u);  // sin(0.7 j) is negative for about half of them
+  EXPECT_LT(zeros, cols);
 }
 
 }  // namespace

@@ -229,6 +229,8 @@ _PROTOTYPES = {
                                               POINTER(TranslucencyEstimateParamsStruct), _out_handle]),
     "arcus_job_get_translucency_estimate": (_status, [_handle, POINTER(TranslucencyEstimateResultStruct)]),
     "arcus_job_get_translucency_profile": (_status, [_handle, _dvec, _dvec]),
+    "arcus_job_get_translucency_system": (_status, [_handle, c_uint32, _dvec, _dvec, _dvec]),
+    "arcus_job_get_translucency_sources": (_status, [_handle, _dvec, _dvec, _dvec, _dvec]),
 }
 
 # ---- finding the library --------------------------------------------------------------

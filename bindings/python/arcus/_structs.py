@@ -369,6 +369,8 @@ class TranslucencyEstimateParamsStruct(ctypes.Structure):
         ("fit", c_int32),
         ("progress", PROGRESS_CALLBACK),
         ("progress_user", c_void_p),
+        ("tikhonov", c_double),
+        ("nonnegative", c_int32),
     ]
 
 
@@ -413,4 +415,7 @@ class TranslucencyEstimateResultStruct(ctypes.Structure):
         ("geometry_seconds", c_double),
         ("histogram_seconds", c_double),
         ("solve_seconds", c_double),
+        ("basis", c_int32),
+        ("near_radius_mm", c_double),
+        ("image_error", c_double * 3),
     ]

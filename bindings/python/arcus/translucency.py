@@ -346,6 +346,8 @@ def render(dipole, mesh, lights, camera=None, *, ortho_height=0.0, mm_per_unit=1
 # ---- estimation from a photograph -------------------------------------------------------
 
 _FIT_TO = {"image": 0, "profile": 1}
+#: Table 3.2's families of basis functions (arcus_profile_basis).
+BASIS_FAMILIES = {"piecewise_constant": 0, "haar": 1, "gaussian": 2, "hermite": 3, "legendre": 4}
 
 
 @dataclass(eq=False)
@@ -356,7 +358,10 @@ class Estimate:
     ({"A": (3,), "AtA": (3,)} condition numbers), ``solve`` (QMR iterations, residuals,
     dropped columns, the fit's relative error, per channel), ``pixels`` (the downscaled
     size, |𝕆| and |𝕀|), ``highlight_cut``, ``minimum_subtracted`` and ``timings``
-    (seconds per stage)."""
+    (seconds per stage); ``system``, when asked for with ``keep_system=True``: per
+    channel the assembled ``A`` (3, n, m) per mm², ``b`` (3, n), the weights ``x`` (3, m),
+    and what A is made of, in mm: ``rows`` (n, 3), ``sources`` (s, 3),
+    ``source_weights`` (s, 3), ``near_irradiance`` (n, 3), ``near_radius_mm``."""
     dipole: "Dipole"
     profile: tuple
     condition: dict
@@ -366,6 +371,7 @@ class Estimate:
     minimum_subtracted: np.ndarray
     timings: dict
     features: frozenset = frozenset()
+    system: dict = None
 
 
 def _photo(photo):
@@ -383,14 +389,30 @@ def _photo(photo):
     return array
 
 
-def estimate_bssrdf(photo, mesh, lights, camera=None, *, basis=24, fit="dipole", fit_to="image", ortho_height=0.0,
-                    mm_per_unit=1.0, eta=1.3, exit="thesis", r_max_mm=0.0, max_side=200, matte=None,
-                    remove_highlights=True, subtract_minimum=True, progress=None, context=None):
+def _system(ctx, job, r):
+    """The estimate's linear system and what it is assembled from (Estimate.system)."""
+    n, m, s = r.equation_pixels, r.basis_count, 2 * r.object_pixels
+    a, b, x = np.empty((3, n, m)), np.empty((3, n)), np.empty((3, m))
+    for c in range(3):
+        ctx._check(lib.arcus_job_get_translucency_system(job, c, _lib.ptr(a[c]), _lib.ptr(b[c]), _lib.ptr(x[c])))
+    rows, sources, weights, near = np.empty((n, 3)), np.empty((s, 3)), np.empty((s, 3)), np.empty((n, 3))
+    ctx._check(lib.arcus_job_get_translucency_sources(job, _lib.ptr(rows), _lib.ptr(sources), _lib.ptr(weights),
+                                                      _lib.ptr(near)))
+    return {"A": a, "b": b, "x": x, "rows": rows, "sources": sources, "source_weights": weights,
+            "near_irradiance": near, "near_radius_mm": r.near_radius_mm}
+
+
+def estimate_bssrdf(photo, mesh, lights, camera=None, *, basis=24, family="piecewise_constant", fit="dipole",
+                    fit_to="image", ortho_height=0.0, mm_per_unit=1.0, eta=1.3, exit="thesis", r_max_mm=0.0,
+                    max_side=200, matte=None, remove_highlights=True, subtract_minimum=True, tikhonov=0.0,
+                    nonnegative=False, keep_system=False, progress=None, context=None):
     """Estimates the BSSRDF of the object in ``photo`` (an HDR file or an (h, w, 3)
     array of linear radiance) from its ``mesh`` (a path or ``(vertices, triangles)``),
     its directional ``lights`` and ``camera`` (as :func:`render`; the camera's size is
-    the photo's): an :class:`Estimate`.  ``basis`` piecewise-constant functions up to
-    ``r_max_mm`` (0: the object's diameter); ``fit``: "dipole" (the only model so far);
+    the photo's): an :class:`Estimate`.  ``basis`` functions of ``family`` (one of
+    :data:`BASIS_FAMILIES`, Table 3.2) up to ``r_max_mm`` (0: the object's diameter);
+    ``tikhonov`` (λ: λ × the mean diagonal of AᵀA added to it) and ``nonnegative``
+    (weights >= 0), both off as in the thesis; ``fit``: "dipole" (the only model so far);
     ``fit_to``: "image" (the pixels the dipole predicts) or "profile" (the bins, as the
     thesis); ``matte``: an (h, w) array, non-zero on the object (default: the mesh's
     projection)."""
@@ -409,6 +431,9 @@ def estimate_bssrdf(photo, mesh, lights, camera=None, *, basis=24, fit="dipole",
     params.eta = to_float(eta, "eta")
     params.exit = to_choice(exit, "exit", _EXITS)
     params.basis_count = to_int(basis, "basis", 2, 64)
+    params.basis = to_choice(family, "family", BASIS_FAMILIES)
+    params.tikhonov = to_float(tikhonov, "tikhonov")
+    params.nonnegative = int(bool(nonnegative))
     params.fit = to_choice(fit_to, "fit_to", _FIT_TO)
     params.r_max_mm = to_float(r_max_mm, "r_max_mm")
     params.max_side = to_int(max_side, "max_side", 8, 4096)
@@ -437,9 +462,9 @@ def estimate_bssrdf(photo, mesh, lights, camera=None, *, basis=24, fit="dipole",
                 ctx._check(lib.arcus_job_get_translucency_profile(job, _lib.ptr(edges), _lib.ptr(weights)))
                 bits = c_uint64()
                 ctx._check(lib.arcus_job_get_features(job, byref(bits)))
-                return r, edges, weights, _lib.feature_names(bits.value)
+                return r, edges, weights, _lib.feature_names(bits.value), _system(ctx, job, r) if keep_system else None
 
-            r, edges, weights, features = ctx._run_job(start, progress, False, "arcus_translucency_estimate",
+            r, edges, weights, features, system = ctx._run_job(start, progress, False, "arcus_translucency_estimate",
                                                        reader=read)
         finally:
             lib.arcus_mesh_release(mesh_handle)
@@ -451,9 +476,10 @@ def estimate_bssrdf(photo, mesh, lights, camera=None, *, basis=24, fit="dipole",
         dipole=dipole, profile=(edges, weights),
         condition={"A": np.array(r.condition_a[:]), "AtA": np.array(r.condition_normal[:])},
         solve={"iterations": np.array(r.iterations[:]), "residual": np.array(r.residual[:]),
-               "dropped_columns": np.array(r.dropped_columns[:]), "fit_error": np.array(r.fit_error[:])},
+               "dropped_columns": np.array(r.dropped_columns[:]), "fit_error": np.array(r.fit_error[:]),
+               "image_error": np.array(r.image_error[:])},
         pixels={"width": r.width, "height": r.height, "object": r.object_pixels, "equations": r.equation_pixels},
         highlight_cut=r.highlight_cut, minimum_subtracted=np.array(r.minimum_subtracted[:]),
         timings={"geometry": r.geometry_seconds, "histograms": r.histogram_seconds, "solve": r.solve_seconds,
                  "total": seconds},
-        features=features)
+        features=features, system=system)

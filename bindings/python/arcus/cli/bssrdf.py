@@ -86,7 +86,12 @@ def add_estimate(verbs):
     e.add_argument("--matte", help="an image, non-zero on the object (default: the mesh's projection)")
     e.add_argument("--eta", type=float, default=1.3, help="the medium's index (default 1.3, as the thesis)")
     e.add_argument("--exit", choices=("thesis", "normalized"), default="thesis")
-    e.add_argument("--basis", type=int, default=24, help="piecewise-constant functions (default 24)")
+    e.add_argument("--basis", type=int, default=24, help="how many basis functions (default 24)")
+    e.add_argument("--family", choices=sorted(translucency.BASIS_FAMILIES), default="piecewise_constant",
+                   help="Table 3.2's family of basis functions (default piecewise_constant, as the thesis)")
+    e.add_argument("--tikhonov", type=float, default=0.0,
+                   help="λ: add λ × the mean diagonal of AᵀA to it (default 0: off, as the thesis)")
+    e.add_argument("--nonnegative", action="store_true", help="keep the basis weights >= 0 (off in the thesis)")
     e.add_argument("--fit-to", choices=("image", "profile"), default="image",
                    help="fit the dipole to the pixels it predicts (default) or to the profile's bins (the thesis)")
     e.add_argument("--compare", metavar="DIR", help="write DIR/compare.png (photo | re-render | difference) and "
@@ -193,17 +198,19 @@ def run_estimate(args):
         camera, ortho = camera_of(args, vertices)
         with Progress("estimating (distance histograms)", quiet=args.quiet) as bar:
             est = translucency.estimate_bssrdf(photo, mesh_path, lights, camera, basis=args.basis,
-                                               fit_to=args.fit_to, ortho_height=ortho, mm_per_unit=args.mm_per_unit,
+                                               family=args.family, tikhonov=args.tikhonov,
+                                               nonnegative=args.nonnegative, fit_to=args.fit_to, ortho_height=ortho, mm_per_unit=args.mm_per_unit,
                                                eta=args.eta, exit=args.exit, matte=matte,
                                                progress=bar if bar.shown else None, context=ctx)
         d = est.dipole
-        print("%s: %d × %d pixels used (%d equations), %d functions to %.3g mm, %.1f s" % (
+        print("%s: %d × %d pixels used (%d equations), %d %s functions to %.3g mm, %.1f s" % (
             Path(args.photo).name, est.pixels["width"], est.pixels["height"], est.pixels["equations"], args.basis,
-            est.profile[0][-1], time.monotonic() - started))
+            args.family.replace("_", "-"), est.profile[0][-1], time.monotonic() - started))
         rows = [("sigma_a [1/mm]", d.sigma_a), ("sigma_s' [1/mm]", d.sigma_s_prime), ("albedo a'", d.albedo),
                 ("sigma_t' [1/mm]", d.sigma_t_prime), ("l_d [mm]", d.diffuse_length),
                 ("R_total", d.total_reflectance), ("cond(A)", est.condition["A"]),
-                ("QMR iterations", est.solve["iterations"]), ("fit error", est.solve["fit_error"])]
+                ("QMR iterations", est.solve["iterations"]), ("image error", est.solve["image_error"]),
+                ("fit error", est.solve["fit_error"])]
         print("%-18s %12s %12s %12s" % ("", "R", "G", "B"))
         for name, values in rows:
             print("%-18s %12.5g %12.5g %12.5g" % ((name,) + tuple(values)))
