@@ -5,6 +5,7 @@
 // away and occluders give no light; bad input is refused naming the parameter.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -310,6 +311,28 @@ TEST_F(TranslucencyRender, BadInputIsRefusedNamingIt) {
   expect_invalid(arcus_translucency_render(ctx(), mesh.mesh, &good, 1, kOverhead.data(), nullptr, &job), "params",
                  "params");
   expect_invalid(arcus_translucency_render(ctx(), mesh.mesh, &good, 1, nullptr, &base, &job), "lights", "lights");
+  // A tabulated profile: each field checked by name.
+  std::vector<double> values(3 * 16, 0.01);
+  arcus_profile_table table{16, 5.0, values.data(), 1.3};
+  auto table_attempt = [&](arcus_profile_table t, const char* argument) {
+    job = nullptr;
+    expect_invalid(arcus_translucency_render_table(ctx(), mesh.mesh, &t, kOverhead.size(), kOverhead.data(), &base,
+                                                   &job),
+                   argument, argument);
+    EXPECT_EQ(job, nullptr);
+  };
+  table_attempt({1, 5.0, values.data(), 1.3}, "profile->count");
+  table_attempt({16, 0.0, values.data(), 1.3}, "profile->reach_mm");
+  table_attempt({16, 5.0, nullptr, 1.3}, "profile->values");
+  table_attempt({16, 5.0, values.data(), 0.5}, "profile->eta");
+  values[7] = -1;
+  table_attempt(table, "profile->values[7]");
+  values[7] = NAN;
+  table_attempt(table, "profile->values[7]");
+  std::fill(values.begin(), values.end(), 0.0);
+  table_attempt(table, "profile->values");
+  expect_invalid(arcus_translucency_render_table(ctx(), mesh.mesh, nullptr, 1, kOverhead.data(), &base, &job),
+                 "profile", "profile");
   // A mesh file that is not there: an I/O error naming it.
   arcus_mesh_t* missing = nullptr;
   EXPECT_EQ(arcus_mesh_load(ctx(), "no/such/mesh.ply", &missing), ARCUS_ERROR_IO);

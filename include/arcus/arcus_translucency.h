@@ -141,6 +141,18 @@ typedef struct arcus_translucency_render_params {
   void* progress_user;
 } arcus_translucency_render_params;
 
+/* A tabulated profile: §5.2's blends, §3.4's fits, measured data.  R_d per mm² at
+ * r_k = reach_mm · (k / (count − 1))², k = 0 .. count − 1 (dense near 0, where
+ * profiles peak), linear in √r between samples, 0 beyond reach_mm. */
+typedef struct arcus_profile_table {
+  uint32_t count;        /* 2..65536                                                 */
+  double reach_mm;       /* > 0                                                     */
+  const double* values;  /* count × 3: row k is R, G, B at r_k; finite and >= 0       */
+  double eta;            /* the medium's index, for the boundary's Fresnel terms (1..3) */
+} arcus_profile_table;
+
+#define ARCUS_FEATURE_TRANSLUCENCY_TABLE (UINT64_C(1) << 51) /* R_d from a table         */
+
 /* Defaults: a 256 × 256 pinhole camera at (0, 0, 5) looking at the origin, y up, 30°;
  * 1 mm per unit, the thesis' exit term, no stretch, automatic spacing, hierarchical
  * gather at 0.005 sr, a 10° highlight (Table 3.1's b). */
@@ -154,6 +166,17 @@ ARCUS_API arcus_status arcus_translucency_render_params_init(arcus_translucency_
 ARCUS_API arcus_status arcus_translucency_render(arcus_context_t* ctx, arcus_mesh_t* mesh, const arcus_dipole* dipole,
                                                  size_t light_count, const arcus_directional_light* lights,
                                                  const arcus_translucency_render_params* params, arcus_job_t** job);
+
+/* As arcus_translucency_render, through a tabulated profile (feature
+ * TRANSLUCENCY_TABLE; the brute-force gather one point a work-item).  The automatic
+ * sample spacing is 1.3 × the smallest channel's half-width (where R falls to half of
+ * R(0)): the dipole's 1/σ′_t in those terms.  profile_scale stretches the table as it
+ * stretches a dipole. */
+ARCUS_API arcus_status arcus_translucency_render_table(arcus_context_t* ctx, arcus_mesh_t* mesh,
+                                                       const arcus_profile_table* profile, size_t light_count,
+                                                       const arcus_directional_light* lights,
+                                                       const arcus_translucency_render_params* params,
+                                                       arcus_job_t** job);
 
 typedef struct arcus_translucency_render_stats {
   uint32_t width, height;
@@ -270,6 +293,12 @@ ARCUS_API arcus_status arcus_job_get_translucency_estimate(arcus_job_t* job,
  * × 3: R_d per mm², Σ_h w_h B_h averaged over each bin's area, per channel); either
  * pointer may be NULL. */
 ARCUS_API arcus_status arcus_job_get_translucency_profile(arcus_job_t* job, double* edges, double* weights);
+/* §3.4's plausible profile fitted to the estimate (src/translucency/hermite.h): the
+ * bins made non-increasing (area-weighted, energy kept) and >= 0, a monotone cubic
+ * Hermite curve through them, scaled to their ∫2πr R dr.  `values`: count (2..65536) × 3,
+ * R per mm² at r_k = r_max_mm (k / (count − 1))² — an arcus_profile_table with reach
+ * r_max_mm and the estimate's η, for arcus_translucency_render_table. */
+ARCUS_API arcus_status arcus_job_get_translucency_hermite(arcus_job_t* job, uint32_t count, double* values);
 /* One channel's linear system (eq. 3.16–3.18), for checking it: `a` equation_pixels ×
  * basis_count (row-major, per mm²), `b` equation_pixels (the pixels over the exit term),
  * `x` basis_count (the weights solved for); any pointer may be NULL. */

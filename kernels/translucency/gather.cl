@@ -5,10 +5,15 @@
  *                                   per-item loop scalar, lanes make it vector code)
  *   arcus_translucency_gather_tree  the hierarchical method (ARCUS_USE_HIERARCHICAL):
  *                                   one point a work-item, lanes 1, a stack walk */
-#ifndef ARCUS_USE_DIPOLE
-#error "the gather evaluates the dipole: built only with the TRANSLUCENCY_DIPOLE feature"
+#if defined(ARCUS_USE_DIPOLE) == defined(ARCUS_USE_PROFILE_TABLE)
+#error "the gather evaluates one profile: built with TRANSLUCENCY_DIPOLE or TRANSLUCENCY_TABLE"
 #endif
 
+#ifdef ARCUS_USE_DIPOLE
+/* The dipole's terms in private memory: the loop reads them for every pair. */
+#define ARCUS_PROFILE_SETUP                     \
+  REAL ch[3 * ARCUS_DIPOLE_TERMS];              \
+  for (int k = 0; k < 3 * ARCUS_DIPOLE_TERMS; ++k) ch[k] = channels[k]
 /* Σ over channels c of p_c·R_d,c(r²) into acc[c]. */
 #define ARCUS_ADD_SAMPLE(acc, r2, p0, p1, p2)                                                            \
   do {                                                                                                    \
@@ -16,14 +21,32 @@
     (acc)[1] += (p1) * arcus_dipole_rd((r2), ch[4], ch[5], ch[6], ch[7]);                                  \
     (acc)[2] += (p2) * arcus_dipole_rd((r2), ch[8], ch[9], ch[10], ch[11]);                                \
   } while (0)
+#else
+#if ARCUS_LANES != 1
+#error "a table is read one point a work-item (lanes 1)"
+#endif
+/* Position in the table, r = reach (k / (size − 1))²: k = (size − 1) √(r / reach). */
+#define ARCUS_PROFILE_SETUP const REAL to_index = (REAL)(table_size - 1) / sqrt(table_reach)
+#define ARCUS_ADD_SAMPLE(acc, r2, p0, p1, p2)                                 \
+  do {                                                                         \
+    const REAL u = sqrt(sqrt(r2)) * to_index;                                  \
+    if (u < (REAL)(table_size - 1)) {                                          \
+      const uint k = (uint)u;                                                  \
+      const REAL f = u - (REAL)k;                                              \
+      __global const REAL* t = channels + k;                                   \
+      (acc)[0] += (p0) * mix(t[0], t[1], f);                                   \
+      (acc)[1] += (p1) * mix(t[table_size], t[table_size + 1], f);             \
+      (acc)[2] += (p2) * mix(t[2 * table_size], t[2 * table_size + 1], f);     \
+    }                                                                          \
+  } while (0)
+#endif
 
 #ifndef ARCUS_USE_HIERARCHICAL
 
 kernel void arcus_translucency_gather_all(ARCUS_PARAMS(ARCUS_TRANSLUCENCY_GATHER_ALL_ARGS)) {
   const uint item = (uint)get_global_id(0);
   if (item * ARCUS_GROUPS >= count) return;
-  REAL ch[3 * ARCUS_DIPOLE_TERMS];
-  for (int k = 0; k < 3 * ARCUS_DIPOLE_TERMS; ++k) ch[k] = channels[k];
+  ARCUS_PROFILE_SETUP;
   /* This item's lane groups of points; past the slice's end a group repeats its last
    * one (slices need not be whole work-items). */
   uint at[ARCUS_GROUPS];
@@ -69,8 +92,7 @@ kernel void arcus_translucency_gather_tree(ARCUS_PARAMS(ARCUS_TRANSLUCENCY_GATHE
   const uint item = (uint)get_global_id(0);
   if (item >= count) return;
   const uint point = first + item;
-  REAL ch[3 * ARCUS_DIPOLE_TERMS];
-  for (int k = 0; k < 3 * ARCUS_DIPOLE_TERMS; ++k) ch[k] = channels[k];
+  ARCUS_PROFILE_SETUP;
   const REAL x = exits[point], y = exits[stride + point], z = exits[2 * (size_t)stride + point];
   REAL acc[3] = {RC(0.0), RC(0.0), RC(0.0)};
   uint visited = 0;

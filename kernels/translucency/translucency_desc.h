@@ -6,7 +6,10 @@
  *   exits      the exit points [mm], three planes x, y, z of `stride` REALs each
  *   samples    3 REALs per irradiance sample: its position [mm]
  *   powers     3 REALs per sample: E·ΔA per channel
- *   channels   ARCUS_DIPOLE_TERMS REALs per channel (dipole_rd.h)
+ *   channels   ARCUS_DIPOLE_TERMS REALs per channel (dipole_rd.h); with a table
+ *              (ARCUS_USE_PROFILE_TABLE) `table_size` samples per channel, channel-major,
+ *              at r_k = reach (k / (size − 1))² (arcus_profile_table)
+ *   table_size, table_reach   the table's samples per channel and reach [mm] (0 without)
  *   sums       the result, three planes R, G, B of `stride` REALs each
  *   first, count   the slice of points (brute force: of lane groups) this launch runs
  *
@@ -27,12 +30,12 @@
 #define ARCUS_TRANSLUCENCY_GATHER_ALL_ARGS(X)                                                   \
   X(__global const REAL*, exits) X(__global const REAL*, samples) X(__global const REAL*, powers) \
   X(__global const REAL*, channels) X(__global REAL*, sums) X(const uint, stride) X(const uint, sample_count) \
-  X(const uint, first) X(const uint, count)
+  X(const uint, table_size) X(const REAL, table_reach) X(const uint, first) X(const uint, count)
 
 #define ARCUS_TRANSLUCENCY_GATHER_TREE_ARGS(X)                                                  \
   X(__global const REAL*, exits) X(__global const REAL*, samples) X(__global const REAL*, powers) \
   X(__global const REAL*, channels) X(__global REAL*, sums) X(const uint, stride)               \
-  X(__global const bvh_node*, nodes) X(__global const REAL*, clusters) X(const REAL, max_solid_angle) \
+  X(const uint, table_size) X(const REAL, table_reach) X(__global const bvh_node*, nodes) X(__global const REAL*, clusters) X(const REAL, max_solid_angle) \
   X(__global uint*, visits) X(const uint, first) X(const uint, count)
 
 /* The distance histograms of the estimate (histogram.cl, ARCUS_USE_HISTOGRAM; thesis

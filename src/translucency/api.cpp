@@ -12,6 +12,7 @@
 #include "translucency/dipole.h"
 #include "translucency/materials.h"
 #include "translucency/estimate.h"
+#include "translucency/hermite.h"
 #include "translucency/render.h"
 
 using namespace arcus;
@@ -31,6 +32,22 @@ void check_dipole(const arcus_dipole* d) {
   require_pointer(d, "dipole");
   check_eta(d->eta, "dipole->eta");
   for (int c = 0; c < 3; ++c) channel_of(*d, c);
+}
+
+void check_table(const arcus_profile_table* t) {
+  require_pointer(t, "profile");
+  require(t->count >= 2 && t->count <= 65536, "profile->count = " + std::to_string(t->count) + " is not 2..65536");
+  require(std::isfinite(t->reach_mm) && t->reach_mm > 0,
+          "profile->reach_mm = " + number(t->reach_mm) + " is not a finite distance > 0");
+  require_pointer(t->values, "profile->values");
+  check_eta(t->eta, "profile->eta");
+  for (size_t i = 0; i < 3 * size_t(t->count); ++i)
+    require(std::isfinite(t->values[i]) && t->values[i] >= 0,
+            "profile->values[" + std::to_string(i) + "] = " + number(t->values[i]) + " (sample " +
+                std::to_string(i / 3) + ", channel " + std::to_string(i % 3) + ") is not a finite R_d >= 0");
+  bool any = false;
+  for (size_t i = 0; i < 3 * size_t(t->count); ++i) any = any || t->values[i] > 0;
+  require(any, "profile->values: every sample is 0 (nothing would leave the surface)");
 }
 
 // The caller's count of items of `per_item` doubles, refused when the arrays could not
@@ -176,26 +193,49 @@ arcus_status arcus_translucency_render_params_init(arcus_translucency_render_par
   });
 }
 
-arcus_status arcus_translucency_render(arcus_context_t* ctx, arcus_mesh_t* mesh, const arcus_dipole* dipole,
-                                       size_t light_count, const arcus_directional_light* lights,
-                                       const arcus_translucency_render_params* params, arcus_job_t** job) {
+namespace {
+
+// Both renders alike once the profile is checked.
+arcus_status render_with(arcus_context_t* ctx, arcus_mesh_t* mesh, const translucency::ProfileSource& profile,
+                         bool tabulated, size_t light_count, const arcus_directional_light* lights,
+                         const arcus_translucency_render_params* params, arcus_job_t** job) {
   return on<arcus_context_s>(ctx, kContextHandle, "ctx", [&](arcus_context_s*, std::string* message) {
     require_pointer(job, "job");
     *job = nullptr;
     const auto* m = object_of<arcus_mesh_s>(ctx, mesh, geometry::kMeshHandle, "mesh");
-    check_dipole(dipole);
+    if (tabulated) check_table(profile.table);
+    else check_dipole(profile.dipole);
     require_pointer(params, "params");
     require(light_count <= 64, "light_count = " + std::to_string(light_count) + " is not 1..64");
     if (light_count > 0) require_pointer(lights, "lights");
     const std::vector<arcus_directional_light> list(lights, lights + light_count);
     bool cancelled = false;
-    auto j = translucency::render(ctx, m->mesh, *dipole, list, *params, &cancelled);
+    auto j = translucency::render(ctx, m->mesh, profile, list, *params, &cancelled);
     retain_context(ctx);  // the job's reference
     *job = j.release();
     if (!cancelled) return ARCUS_SUCCESS;
     *message = "the progress callback cancelled the render: pixels not reached are 0";
     return ARCUS_ERROR_CANCELLED;
   });
+}
+
+}  // namespace
+
+arcus_status arcus_translucency_render(arcus_context_t* ctx, arcus_mesh_t* mesh, const arcus_dipole* dipole,
+                                       size_t light_count, const arcus_directional_light* lights,
+                                       const arcus_translucency_render_params* params, arcus_job_t** job) {
+  translucency::ProfileSource profile;
+  profile.dipole = dipole;
+  return render_with(ctx, mesh, profile, false, light_count, lights, params, job);
+}
+
+arcus_status arcus_translucency_render_table(arcus_context_t* ctx, arcus_mesh_t* mesh,
+                                             const arcus_profile_table* table, size_t light_count,
+                                             const arcus_directional_light* lights,
+                                             const arcus_translucency_render_params* params, arcus_job_t** job) {
+  translucency::ProfileSource profile;
+  profile.table = table;
+  return render_with(ctx, mesh, profile, true, light_count, lights, params, job);
 }
 
 arcus_status arcus_job_get_translucency_stats(arcus_job_t* job, arcus_translucency_render_stats* stats) {
@@ -266,6 +306,20 @@ arcus_status arcus_job_get_translucency_profile(arcus_job_t* job, double* edges,
   return on_job<EstimateJob>(job, "a translucency estimate", [&](EstimateJob* j) {
     copy_out(j->edges, edges);
     copy_out(j->weights, weights);
+  });
+}
+
+arcus_status arcus_job_get_translucency_hermite(arcus_job_t* job, uint32_t count, double* values) {
+  return on_job<EstimateJob>(job, "a translucency estimate", [&](EstimateJob* j) {
+    require(count >= 2 && count <= 65536, "count = " + std::to_string(count) + " is not 2..65536");
+    require_pointer(values, "values");
+    const size_t m = j->result.basis_count;
+    for (int c = 0; c < 3; ++c) {
+      std::vector<double> averages(m);
+      for (size_t h = 0; h < m; ++h) averages[h] = j->weights[h * 3 + size_t(c)];
+      const std::vector<double> curve = translucency::monotone_hermite_profile(j->edges, averages, count);
+      for (uint32_t k = 0; k < count; ++k) values[3 * size_t(k) + size_t(c)] = curve[k];
+    }
   });
 }
 

@@ -75,9 +75,43 @@ std::vector<double> channel_terms(const arcus_dipole& d, double s, int32_t scali
   return out;
 }
 
-// The samples' spacing: the caller's, or the smallest mean free path 1/σ′_t (the
-// profile's narrowest feature), coarsened until the samples fit.
-double choose_spacing(const Surface& surface, const arcus_dipole& d, double s, double asked) {
+// A table's samples channel-major for the kernel, stretched by s as channel_terms
+// stretches a dipole (the reach × s; the values / s² to keep the energy, or as they are).
+std::vector<double> table_channels(const arcus_profile_table& t, double s, int32_t scaling) {
+  std::vector<double> out(3 * size_t(t.count));
+  const double factor = scaling == ARCUS_PROFILE_SCALE_THESIS ? 1 : 1 / (s * s);
+  for (uint32_t k = 0; k < t.count; ++k)
+    for (int c = 0; c < 3; ++c) out[size_t(c) * t.count + k] = factor * t.values[3 * size_t(k) + size_t(c)];
+  return out;
+}
+
+// The profile's narrowest feature, before any stretch: the dipole's smallest mean free
+// path 1/σ′_t; a table's smallest half-width (where R first falls to half of R(0))
+// times 1.3, the dipole's ratio (for r ≪ ℓ_d, R_d ∝ d⁻³ halves at r ≈ 0.77 z_r).
+double natural_spacing(const ProfileSource& profile) {
+  double spacing = INFINITY;
+  if (profile.dipole) {
+    for (int c = 0; c < 3; ++c)
+      spacing = std::min(spacing, 1 / (profile.dipole->sigma_a[c] + profile.dipole->sigma_s_prime[c]));
+    return spacing;
+  }
+  const arcus_profile_table& t = *profile.table;
+  for (int c = 0; c < 3; ++c) {
+    const double peak = t.values[size_t(c)];
+    for (uint32_t k = 1; k < t.count; ++k)
+      if (t.values[3 * size_t(k) + size_t(c)] <= peak / 2) {
+        const double u = double(k) / (t.count - 1);
+        spacing = std::min(spacing, 1.3 * t.reach_mm * u * u);
+        break;
+      }
+  }
+  // A profile that never halves is flat over its reach: its samples need be no finer.
+  return std::isfinite(spacing) ? spacing : t.reach_mm / 16;
+}
+
+// The samples' spacing: the caller's, or the profile's narrowest feature stretched by s,
+// coarsened until the samples fit.
+double choose_spacing(const Surface& surface, const ProfileSource& profile, double s, double asked) {
   if (asked > 0) {
     const uint64_t n = sample_count(surface, asked);
     require(n <= kMaxSamples, "params->sample_spacing_mm = " + number(asked) + " would take " +
@@ -86,8 +120,7 @@ double choose_spacing(const Surface& surface, const arcus_dipole& d, double s, d
                                   std::to_string(kMaxSamples) + ": give a larger spacing");
     return asked;
   }
-  double spacing = INFINITY;
-  for (int c = 0; c < 3; ++c) spacing = std::min(spacing, s / (d.sigma_a[c] + d.sigma_s_prime[c]));
+  double spacing = s * natural_spacing(profile);
   for (uint64_t n; (n = sample_count(surface, spacing)) > kMaxSamples;)
     spacing *= 1.05 * std::sqrt(double(n) / double(kMaxSamples));
   return spacing;
@@ -170,11 +203,12 @@ Tree build_tree(std::vector<double>* positions, std::vector<double>* powers, con
 // Σ_i R_d E ΔA at each point (3 planes of `stride`): the kernel of the job's features.
 std::vector<double> gather(arcus_context_t* ctx, RenderJob& job, const std::vector<double>& points,
                            std::vector<double> positions, std::vector<double> powers, const std::vector<double>& areas,
-                           const std::vector<double>& channels, const arcus_translucency_render_params& p,
-                           size_t* stride_out, bool* cancelled) {
+                           const std::vector<double>& channels, uint32_t table_size, double table_reach,
+                           const arcus_translucency_render_params& p, size_t* stride_out, bool* cancelled) {
   const size_t count = points.size() / 3;
   const bool tree = p.gather == ARCUS_GATHER_HIERARCHICAL;
-  const Layout layout = tree ? Layout{1, 1} : choose_layout(ctx->runtime->entry(), 4);
+  // A table is read one point a work-item (gather.cl): no lanes to gather into.
+  const Layout layout = tree || table_size > 0 ? Layout{1, 1} : choose_layout(ctx->runtime->entry(), 4);
   const size_t per_item = layout.per_item();
   const size_t stride = std::max<size_t>(per_item, (count + per_item - 1) / per_item * per_item);
   *stride_out = stride;
@@ -195,9 +229,11 @@ std::vector<double> gather(arcus_context_t* ctx, RenderJob& job, const std::vect
     launch.upload(Args::exits, planes, "the exit points");
     launch.upload(Args::samples, positions, "the irradiance samples");
     launch.upload(Args::powers, powers, "the samples' powers");
-    launch.upload(Args::channels, channels, "the dipole's terms");
+    launch.upload(Args::channels, channels, table_size > 0 ? "the profile's table" : "the dipole's terms");
     launch.bind(Args::sums, &sums);
     launch.bind_value(Args::stride, static_cast<cl_uint>(stride));
+    launch.bind_value(Args::table_size, static_cast<cl_uint>(table_size));
+    launch.bind_value(Args::table_reach, table_reach);
   };
   if (!tree) {
     Launch<AllArg> launch(ctx, built.program);
@@ -242,7 +278,7 @@ std::vector<double> gather(arcus_context_t* ctx, RenderJob& job, const std::vect
 
 double phong_exponent(double b_deg) { return -std::log(2.0) / std::log(std::cos(b_deg * M_PI / 180)); }
 
-std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const geometry::Mesh& mesh, const arcus_dipole& dipole,
+std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const geometry::Mesh& mesh, const ProfileSource& profile,
                                   const std::vector<arcus_directional_light>& lights,
                                   const arcus_translucency_render_params& p, bool* cancelled) {
   const auto start = std::chrono::steady_clock::now();
@@ -250,14 +286,15 @@ std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const geometry::Mesh& me
   const std::vector<Light> light_list = lights_of(lights);
   *cancelled = false;
   auto job = std::make_unique<RenderJob>(ctx);
-  job->features = ARCUS_FEATURE_TRANSLUCENCY_DIPOLE |
+  job->features = (profile.table ? ARCUS_FEATURE_TRANSLUCENCY_TABLE : ARCUS_FEATURE_TRANSLUCENCY_DIPOLE) |
                   (p.gather == ARCUS_GATHER_HIERARCHICAL ? ARCUS_FEATURE_TRANSLUCENCY_HIERARCHICAL : 0);
+  const double eta = profile.eta();
   const Surface surface = make_surface(mesh, p.mm_per_unit);
-  const double spacing = choose_spacing(surface, dipole, p.profile_scale, p.sample_spacing_mm);
+  const double spacing = choose_spacing(surface, profile, p.profile_scale, p.sample_spacing_mm);
   const Samples samples = make_samples(surface, spacing);
   const scene::CameraDesc camera = camera_in_mm(p.camera, p.mm_per_unit);
   const bvh::DeviceBvh bvh(ctx, bvh::build_triangles(surface.mesh), false);
-  std::vector<double> powers = sample_irradiance(ctx, bvh, surface, samples, light_list, dipole.eta);
+  std::vector<double> powers = sample_irradiance(ctx, bvh, surface, samples, light_list, eta);
   for (size_t s = 0; s < samples.size(); ++s)
     for (int c = 0; c < 3; ++c) powers[3 * s + c] *= samples.areas[s];
   const Views views = camera_hits(ctx, bvh, surface, camera, p.ortho_height * p.mm_per_unit);
@@ -278,12 +315,15 @@ std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const geometry::Mesh& me
   const auto gather_start = std::chrono::steady_clock::now();
   size_t stride = 0;
   const std::vector<double> sums =
-      gather(ctx, *job, points, samples.positions, powers, samples.areas,
-             channel_terms(dipole, p.profile_scale, p.profile_scaling), p, &stride, cancelled);
+      profile.table
+          ? gather(ctx, *job, points, samples.positions, powers, samples.areas,
+                   table_channels(*profile.table, p.profile_scale, p.profile_scaling), profile.table->count,
+                   profile.table->reach_mm * p.profile_scale, p, &stride, cancelled)
+          : gather(ctx, *job, points, samples.positions, powers, samples.areas,
+                   channel_terms(*profile.dipole, p.profile_scale, p.profile_scaling), 0, 0, p, &stride, cancelled);
   job->render.gather_seconds = seconds_since(gather_start);
 
   // The exit term (1/π)F_t(η, ω_o), normalised when asked; the highlight.
-  const double eta = dipole.eta;
   const double exit_scale = (1 / M_PI) / (p.exit == ARCUS_EXIT_NORMALIZED ? exit_transmittance(eta) : 1.0);
   const double exponent = p.highlight_deg > 0 ? phong_exponent(p.highlight_deg) : 0;
   job->rgb.assign(3 * pixels, 0.0f);

@@ -28,9 +28,17 @@ constexpr uint64_t kMaxSamples = uint64_t(1) << 22;
 // Hierarchical gather: the solid angle (sr) under which a node counts as one sample.
 constexpr double kDefaultSolidAngle = 0.005;
 
-// Checks every parameter but the dipole (the caller's: api.cpp) and the mesh, naming
-// them as the C API does ("params->exit", "lights[1].direction"), and renders; *cancelled when the progress callback stopped it.
-std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const geometry::Mesh& mesh, const arcus_dipole& dipole,
+// What R_d is: the dipole or a table (checked by the caller, api.cpp), one of them.
+struct ProfileSource {
+  const arcus_dipole* dipole = nullptr;
+  const arcus_profile_table* table = nullptr;
+  double eta() const { return dipole ? dipole->eta : table->eta; }
+};
+
+// Checks every parameter but the profile (the caller's: api.cpp) and the mesh, naming
+// them as the C API does ("params->exit", "lights[1].direction"), and renders;
+// *cancelled when the progress callback stopped it.
+std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const geometry::Mesh& mesh, const ProfileSource& profile,
                                   const std::vector<arcus_directional_light>& lights,
                                   const arcus_translucency_render_params& params, bool* cancelled);
 

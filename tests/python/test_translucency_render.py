@@ -143,6 +143,11 @@ def test_the_command_renders_a_bundled_mesh_from_anywhere(tmp_path):
     assert image.read(tmp_path / "t.png").shape == (64, 64, 3)
     assert image.read(tmp_path / "t.exr").max() > 0
     assert "irradiance samples" in r.stdout
+    # §5.2's blend of two materials, through a tabulated profile.
+    r = arcus_command("bssrdf", "render", "torus", "--blend", "skimmilk", "0.3", "--blend", "apple", "0.7", "--quick",
+                      "-o", "b.exr", "--quiet", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert image.read(tmp_path / "b.exr").max() > 0
 
 
 @pytest.mark.end_to_end
@@ -152,6 +157,8 @@ def test_the_command_renders_a_bundled_mesh_from_anywhere(tmp_path):
     (["torus", "--light", "0", "1"], ["--light"]),
     (["torus", "-o", "x.gif"], ["x.gif"]),
     (["torus", "--sigma-a", "1", "1", "1"], ["--sigma-s-prime"]),
+    (["torus", "--blend", "apple", "half"], ["--blend", "half"]),
+    (["torus", "--blend", "apple", "1", "--blend", "marble", "1"], ["eta"]),
 ])
 def test_the_commands_bad_input_exits_2(tmp_path, args, words):
     r = arcus_command("bssrdf", "render", *args, "--quiet", cwd=tmp_path)
@@ -274,8 +281,10 @@ def test_the_command_estimates_what_it_rendered(tmp_path):
     r = arcus_command("bssrdf", "estimate", "photo.png", "--mesh", "sphere.off", *view, cwd=tmp_path)
     assert r.returncode == 2 and "8-bit" in r.stderr, r.stderr
     r = arcus_command("bssrdf", "estimate", "photo.exr", "--mesh", "sphere.off", "--family", "legendre", "--basis",
-                      "12", "--nonnegative", "--tikhonov", "1e-4", *view, cwd=tmp_path)
+                      "12", "--nonnegative", "--tikhonov", "1e-4", "--fit", "hermite", "--compare", "hermite",
+                      *view, cwd=tmp_path)
     assert r.returncode == 0 and "12 legendre functions" in r.stdout and "image error" in r.stdout, r.stderr
+    assert "Hermite R_total" in r.stdout and image.read(tmp_path / "hermite" / "compare.png").shape == (96, 288, 3)
     r = arcus_command("bssrdf", "estimate", "photo.exr", "--mesh", "sphere.off", "--tikhonov", "-1", *view,
                       cwd=tmp_path)
     assert r.returncode == 2 and "tikhonov" in r.stderr, r.stderr

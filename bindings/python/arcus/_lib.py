@@ -27,6 +27,7 @@ from ._structs import (  # noqa: F401  (re-exported: the package uses _lib.<Stru
     TranslucencyRenderStatsStruct,
     TranslucencyEstimateParamsStruct,
     TranslucencyEstimateResultStruct,
+    ProfileTableStruct,
     InversionStruct,
     AtmosphereDescStruct,
     AdvanceParamsStruct,
@@ -229,6 +230,10 @@ _PROTOTYPES = {
                                               POINTER(TranslucencyEstimateParamsStruct), _out_handle]),
     "arcus_job_get_translucency_estimate": (_status, [_handle, POINTER(TranslucencyEstimateResultStruct)]),
     "arcus_job_get_translucency_profile": (_status, [_handle, _dvec, _dvec]),
+    "arcus_translucency_render_table": (_status, [_handle, _handle, POINTER(ProfileTableStruct), c_size_t,
+                                                  POINTER(DirectionalLightStruct),
+                                                  POINTER(TranslucencyRenderParamsStruct), _out_handle]),
+    "arcus_job_get_translucency_hermite": (_status, [_handle, c_uint32, _dvec]),
     "arcus_job_get_translucency_system": (_status, [_handle, c_uint32, _dvec, _dvec, _dvec]),
     "arcus_job_get_translucency_sources": (_status, [_handle, _dvec, _dvec, _dvec, _dvec]),
 }

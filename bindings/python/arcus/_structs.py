@@ -353,6 +353,15 @@ class TranslucencyRenderStatsStruct(ctypes.Structure):
     ]
 
 
+class ProfileTableStruct(ctypes.Structure):
+    _fields_ = [
+        ("count", c_uint32),
+        ("reach_mm", c_double),
+        ("values", ctypes.POINTER(c_double)),
+        ("eta", c_double),
+    ]
+
+
 class TranslucencyEstimateParamsStruct(ctypes.Structure):
     _fields_ = [
         ("camera", CameraStruct),

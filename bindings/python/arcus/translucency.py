@@ -31,7 +31,7 @@ from ._errors import ArgumentError
 from ._lib import lib
 from .context import _owned_context
 
-__all__ = ["Dipole", "materials", "henyey_greenstein", "fresnel_reflectance", "render", "Rendered", "read_mesh",
+__all__ = ["Dipole", "Profile", "materials", "henyey_greenstein", "fresnel_reflectance", "render", "Rendered", "read_mesh",
            "estimate_bssrdf", "Estimate"]
 
 
@@ -146,6 +146,96 @@ class Dipole:
         return "Dipole(sigma_a=%s, sigma_s_prime=%s, eta=%r)" % (
             np.array2string(self.sigma_a, separator=", "), np.array2string(self.sigma_s_prime, separator=", "),
             self.eta)
+
+
+class Profile:
+    """A tabulated diffuse reflectance profile R(r) per channel (arcus_profile_table):
+    ``values`` (count, 3) per mm² at r_k = ``reach_mm`` (k / (count − 1))² (dense near 0,
+    where profiles peak), linear in √r between samples, 0 beyond the reach; ``eta`` for
+    the boundary.  For §5.2's blends, §3.4's fitted profiles (:attr:`Estimate.hermite`)
+    and measured data; :func:`render` takes one wherever it takes a :class:`Dipole`.
+    """
+
+    def __init__(self, reach_mm, values, eta=1.3):
+        self.reach_mm = to_float(reach_mm, "reach_mm")
+        self.values = np.ascontiguousarray(to_real_array(values, "values"), dtype=float)
+        self.eta = to_float(eta, "eta")
+        if self.values.ndim != 2 or self.values.shape[1] != 3 or not 2 <= len(self.values) <= 65536:
+            raise ArgumentError("values must be (count, 3) with count 2..65536, got shape %s" % (self.values.shape,))
+        if not (self.reach_mm > 0 and np.isfinite(self.reach_mm)):
+            raise ArgumentError("reach_mm = %r is not a finite distance > 0" % self.reach_mm)
+        if not (np.isfinite(self.values).all() and (self.values >= 0).all()):
+            raise ArgumentError("values must be finite and >= 0")
+
+    @property
+    def radii(self):
+        """The samples' distances, mm: reach (k / (count − 1))²."""
+        return self.reach_mm * np.linspace(0, 1, len(self.values)) ** 2
+
+    @classmethod
+    def from_dipole(cls, dipole, reach_mm=None, count=4096):
+        """``dipole`` sampled (exactly, at the table's radii) up to ``reach_mm`` (default:
+        25 diffusion lengths of its longest channel, where R_d has fallen by e^-25, at
+        most 1000 mm)."""
+        if reach_mm is None:
+            longest = np.max(np.where(np.isfinite(dipole.diffuse_length), dipole.diffuse_length, np.inf))
+            reach_mm = float(min(1000.0, 25 * longest))
+        r = to_float(reach_mm, "reach_mm") * np.linspace(0, 1, to_int(count, "count", 2, 65536)) ** 2
+        return cls(reach_mm, dipole.Rd(r), dipole.eta)
+
+    @classmethod
+    def from_samples(cls, radii, values, eta=1.3, count=4096):
+        """Measured or computed samples: ``radii`` (n,) increasing from 0 mm, ``values``
+        (n, 3), linearly interpolated onto the table's radii."""
+        r = to_real_array(radii, "radii")
+        v = to_real_array(values, "values")
+        if r.ndim != 1 or len(r) < 2 or r[0] != 0 or np.any(np.diff(r) <= 0):
+            raise ArgumentError("radii must be increasing from 0 (at least two), got %r" % (r,))
+        if v.shape != (len(r), 3):
+            raise ArgumentError("values must be (len(radii), 3), got shape %s" % (v.shape,))
+        grid = r[-1] * np.linspace(0, 1, to_int(count, "count", 2, 65536)) ** 2
+        return cls(r[-1], np.stack([np.interp(grid, r, v[:, c]) for c in range(3)], axis=1), eta)
+
+    @classmethod
+    def blend(cls, profiles, weights, count=4096):
+        """Σ w_i R_i (thesis §5.2's linear blends): ``profiles`` Dipoles or Profiles of
+        one η, ``weights`` one number each (or R, G, B each); the reach is the largest."""
+        items = [p if isinstance(p, Profile) else cls.from_dipole(p, count=count) for p in profiles]
+        if len(items) != len(weights) or not items:
+            raise ArgumentError("give one weight per profile (%d profiles, %d weights)" % (len(items), len(weights)))
+        if len({p.eta for p in items}) != 1:
+            raise ArgumentError("blended profiles must share one eta, got %s" % sorted({p.eta for p in items}))
+        reach = max(p.reach_mm for p in items)
+        grid = reach * np.linspace(0, 1, to_int(count, "count", 2, 65536)) ** 2
+        total = sum(_rgb(w, "weights[%d]" % i) * p.Rd(grid) for i, (w, p) in enumerate(zip(weights, items)))
+        return cls(reach, total, items[0].eta)
+
+    def Rd(self, r):
+        """R per mm² at distances ``r`` mm (any shape), as the renderer reads the table:
+        an array of r's shape + (3,)."""
+        distances = to_real_array(r, "r")
+        u = np.sqrt(np.abs(distances) / self.reach_mm) * (len(self.values) - 1)
+        k = np.minimum(u.astype(int), len(self.values) - 2)
+        f = (u - k)[..., None]
+        out = (1 - f) * self.values[k] + f * self.values[k + 1]
+        return np.where((u < len(self.values) - 1)[..., None], out, 0.0)
+
+    @property
+    def total_reflectance(self):
+        """∫ 2πr R(r) dr per channel, by the trapezoid rule over the samples."""
+        r = self.radii
+        y = 2 * np.pi * r[:, None] * self.values
+        return 0.5 * ((y[1:] + y[:-1]) * np.diff(r)[:, None]).sum(axis=0)
+
+    def _table(self):
+        t = _lib.ProfileTableStruct()
+        t.count, t.reach_mm, t.eta = len(self.values), self.reach_mm, self.eta
+        t.values = _lib.ptr(self.values)
+        return t
+
+    def __repr__(self):
+        return "Profile(reach_mm=%r, %d samples, eta=%r, total_reflectance=%s)" % (
+            self.reach_mm, len(self.values), self.eta, np.array2string(self.total_reflectance, precision=4))
 
 
 def henyey_greenstein(cos_theta, g):
@@ -269,7 +359,7 @@ def render(dipole, mesh, lights, camera=None, *, ortho_height=0.0, mm_per_unit=1
            profile_scale=1.0, profile_scaling="energy", sample_spacing_mm=0.0, gather="hierarchical",
            max_solid_angle=None, highlight_deg=10.0, out=None, exposure=None, progress=None, context=None):
     """Renders ``mesh`` (a file path, or ``(vertices, triangles)``), made of ``dipole``
-    (a :class:`Dipole`), under directional ``lights`` ([(direction toward the light,
+    (a :class:`Dipole`, or a tabulated :class:`Profile`), under directional ``lights`` ([(direction toward the light,
     irradiance (one number or R, G, B)), ...]) seen by ``camera`` (a dict of position,
     look_at, up, vfov_deg, width, height in mesh units; defaults: 256², from (0, 0, 5)):
     thesis eq. 3.6–3.8, a :class:`Rendered`.
@@ -285,8 +375,9 @@ def render(dipole, mesh, lights, camera=None, *, ortho_height=0.0, mm_per_unit=1
     the radiance, .png and .jpg are scaled by ``exposure`` (default: the 99.5th
     percentile of the object's pixels to 0.9) and sRGB-encoded.
     """
-    if not isinstance(dipole, Dipole):
-        raise ArgumentError("dipole must be an arcus.translucency.Dipole, got %r" % (dipole,))
+    if not isinstance(dipole, (Dipole, Profile)):
+        raise ArgumentError("dipole must be an arcus.translucency.Dipole or Profile, got %r" % (dipole,))
+    table = dipole._table() if isinstance(dipole, Profile) else None
     _check_progress(progress)
     light_array = _lights(lights)
     params = _lib.TranslucencyRenderParamsStruct()
@@ -311,6 +402,9 @@ def render(dipole, mesh, lights, camera=None, *, ortho_height=0.0, mm_per_unit=1
         try:
             def start(callback, job_out):
                 params.progress = callback
+                if table is not None:
+                    return lib.arcus_translucency_render_table(ctx._handle, mesh_handle, byref(table),
+                                                               len(light_array), light_array, byref(params), job_out)
                 return lib.arcus_translucency_render(ctx._handle, mesh_handle, byref(dipole._struct),
                                                      len(light_array), light_array, byref(params), job_out)
 
@@ -346,6 +440,7 @@ def render(dipole, mesh, lights, camera=None, *, ortho_height=0.0, mm_per_unit=1
 # ---- estimation from a photograph -------------------------------------------------------
 
 _FIT_TO = {"image": 0, "profile": 1}
+_HERMITE_SAMPLES = 4096
 #: Table 3.2's families of basis functions (arcus_profile_basis).
 BASIS_FAMILIES = {"piecewise_constant": 0, "haar": 1, "gaussian": 2, "hermite": 3, "legendre": 4}
 
@@ -358,7 +453,9 @@ class Estimate:
     ({"A": (3,), "AtA": (3,)} condition numbers), ``solve`` (QMR iterations, residuals,
     dropped columns, the fit's relative error, per channel), ``pixels`` (the downscaled
     size, |𝕆| and |𝕀|), ``highlight_cut``, ``minimum_subtracted`` and ``timings``
-    (seconds per stage); ``system``, when asked for with ``keep_system=True``: per
+    (seconds per stage); ``hermite``, §3.4's plausible profile (a :class:`Profile`:
+    monotone, differentiable, through the bins, keeping their energy); ``fitted``, the
+    one ``fit`` named; ``system``, when asked for with ``keep_system=True``: per
     channel the assembled ``A`` (3, n, m) per mm², ``b`` (3, n), the weights ``x`` (3, m),
     and what A is made of, in mm: ``rows`` (n, 3), ``sources`` (s, 3),
     ``source_weights`` (s, 3), ``near_irradiance`` (n, 3), ``near_radius_mm``."""
@@ -372,6 +469,13 @@ class Estimate:
     timings: dict
     features: frozenset = frozenset()
     system: dict = None
+    hermite: "Profile" = None
+    fit: str = "dipole"
+
+    @property
+    def fitted(self):
+        """The model asked for with ``fit``: :attr:`dipole` or :attr:`hermite`."""
+        return self.hermite if self.fit == "hermite" else self.dipole
 
 
 def _photo(photo):
@@ -412,13 +516,13 @@ def estimate_bssrdf(photo, mesh, lights, camera=None, *, basis=24, family="piece
     the photo's): an :class:`Estimate`.  ``basis`` functions of ``family`` (one of
     :data:`BASIS_FAMILIES`, Table 3.2) up to ``r_max_mm`` (0: the object's diameter);
     ``tikhonov`` (λ: λ × the mean diagonal of AᵀA added to it) and ``nonnegative``
-    (weights >= 0), both off as in the thesis; ``fit``: "dipole" (the only model so far);
+    (weights >= 0), both off as in the thesis; ``fit``: "dipole" or "hermite" (§3.4's
+    monotone cubic Hermite profile; both are computed, ``fit`` picks ``.fitted``);
     ``fit_to``: "image" (the pixels the dipole predicts) or "profile" (the bins, as the
     thesis); ``matte``: an (h, w) array, non-zero on the object (default: the mesh's
     projection)."""
-    if fit != "dipole":
-        raise ArgumentError("fit must be 'dipole' (the monotone cubic Hermite fit of §3.4 is not built yet), got %r"
-                            % (fit,))
+    if fit not in ("dipole", "hermite"):
+        raise ArgumentError("fit must be 'dipole' or 'hermite' (§3.4's monotone cubic Hermite), got %r" % (fit,))
     _check_progress(progress)
     pixels = _photo(photo)
     height, width = pixels.shape[:2]
@@ -462,9 +566,12 @@ def estimate_bssrdf(photo, mesh, lights, camera=None, *, basis=24, family="piece
                 ctx._check(lib.arcus_job_get_translucency_profile(job, _lib.ptr(edges), _lib.ptr(weights)))
                 bits = c_uint64()
                 ctx._check(lib.arcus_job_get_features(job, byref(bits)))
-                return r, edges, weights, _lib.feature_names(bits.value), _system(ctx, job, r) if keep_system else None
+                hermite = np.empty((_HERMITE_SAMPLES, 3))
+                ctx._check(lib.arcus_job_get_translucency_hermite(job, _HERMITE_SAMPLES, _lib.ptr(hermite)))
+                return (r, edges, weights, hermite, _lib.feature_names(bits.value),
+                        _system(ctx, job, r) if keep_system else None)
 
-            r, edges, weights, features, system = ctx._run_job(start, progress, False, "arcus_translucency_estimate",
+            r, edges, weights, hermite, features, system = ctx._run_job(start, progress, False, "arcus_translucency_estimate",
                                                        reader=read)
         finally:
             lib.arcus_mesh_release(mesh_handle)
@@ -482,4 +589,4 @@ def estimate_bssrdf(photo, mesh, lights, camera=None, *, basis=24, family="piece
         highlight_cut=r.highlight_cut, minimum_subtracted=np.array(r.minimum_subtracted[:]),
         timings={"geometry": r.geometry_seconds, "histograms": r.histogram_seconds, "solve": r.solve_seconds,
                  "total": seconds},
-        features=features, system=system)
+        features=features, system=system, hermite=Profile(r.r_max_mm, hermite, r.dipole.eta), fit=fit)

@@ -39,6 +39,8 @@ def add(sub):
     r.add_argument("--sigma-a", type=float, nargs=3, metavar=("R", "G", "B"), help="absorption, mm^-1")
     r.add_argument("--sigma-s-prime", type=float, nargs=3, metavar=("R", "G", "B"), help="reduced scattering, mm^-1")
     r.add_argument("--eta", type=float, help="relative refractive index (default 1.3, or the material's)")
+    r.add_argument("--blend", nargs=2, action="append", metavar=("MATERIAL", "WEIGHT"),
+                   help="§5.2's linear blend: Σ weight × the material's profile (repeat; one η among them)")
     r.add_argument("--light", type=float, nargs="+", action="append", metavar="X",
                    help="a directional light: DX DY DZ toward it, then an irradiance (one value or R G B; default "
                         "1); may be given several times (default: one from (1, 1, 1))")
@@ -92,6 +94,9 @@ def add_estimate(verbs):
     e.add_argument("--tikhonov", type=float, default=0.0,
                    help="λ: add λ × the mean diagonal of AᵀA to it (default 0: off, as the thesis)")
     e.add_argument("--nonnegative", action="store_true", help="keep the basis weights >= 0 (off in the thesis)")
+    e.add_argument("--fit", choices=("dipole", "hermite"), default="dipole",
+                   help="the model --compare re-renders: the fitted dipole (default) or §3.4's monotone cubic "
+                        "Hermite profile")
     e.add_argument("--fit-to", choices=("image", "profile"), default="image",
                    help="fit the dipole to the pixels it predicts (default) or to the profile's bins (the thesis)")
     e.add_argument("--compare", metavar="DIR", help="write DIR/compare.png (photo | re-render | difference) and "
@@ -112,6 +117,25 @@ def bundled_mesh(name):
         return found[0]
     raise ArgumentError("%s: neither a mesh file nor a bundled mesh (%s)" % (
         name, ", ".join(sorted(p.stem for p in meshes.glob("*.obj")) + sorted(p.stem for p in meshes.glob("*.ply")))))
+
+
+def profile_of(args):
+    """The render's profile, a dipole (dipole_of) or §5.2's linear blend of materials,
+    and the dipoles it is made of."""
+    if not args.blend:
+        d = dipole_of(args)
+        return d, [d]
+    if args.material or args.sigma_a or args.sigma_s_prime:
+        raise ArgumentError("--blend or --material/--sigma-a/--sigma-s-prime, not both")
+    parts, weights = [], []
+    for name, weight in args.blend:
+        d = translucency.Dipole.from_material(name)
+        parts.append(d if args.eta is None else translucency.Dipole(d.sigma_a, d.sigma_s_prime, args.eta))
+        try:
+            weights.append(float(weight))
+        except ValueError:
+            raise ArgumentError("--blend %s %s: the weight is not a number" % (name, weight)) from None
+    return translucency.Profile.blend(parts, weights), parts
 
 
 def dipole_of(args):
@@ -157,7 +181,7 @@ def run_render(args):
         if not 1 <= getattr(args, flag) <= 16384:
             raise ArgumentError("--%s: expected 1..16384, got %d" % (flag, getattr(args, flag)))
     mesh_path = bundled_mesh(args.mesh)
-    dipole = dipole_of(args)
+    profile, dipoles = profile_of(args)
     lights = lights_of(args)
     if args.quick:
         args.width, args.height = (max(64, s // QUICK_SCALE) for s in (args.width, args.height))
@@ -172,9 +196,9 @@ def run_render(args):
         camera, ortho = camera_of(args, vertices)
         spacing = args.spacing
         if args.quick and spacing == 0:
-            spacing = 2 / float(np.max(dipole.sigma_t_prime))
+            spacing = 2 / float(max(np.max(d.sigma_t_prime) for d in dipoles))
         with Progress("rendering " + mesh_path.stem, quiet=args.quiet) as bar:
-            result = translucency.render(dipole, mesh_path, lights, camera, ortho_height=ortho,
+            result = translucency.render(profile, mesh_path, lights, camera, ortho_height=ortho,
                                          mm_per_unit=args.mm_per_unit, exit=args.exit, gather=args.gather,
                                          highlight_deg=args.highlight, sample_spacing_mm=spacing,
                                          out=outputs, progress=bar if bar.shown else None, context=ctx)
@@ -199,7 +223,7 @@ def run_estimate(args):
         with Progress("estimating (distance histograms)", quiet=args.quiet) as bar:
             est = translucency.estimate_bssrdf(photo, mesh_path, lights, camera, basis=args.basis,
                                                family=args.family, tikhonov=args.tikhonov,
-                                               nonnegative=args.nonnegative, fit_to=args.fit_to, ortho_height=ortho, mm_per_unit=args.mm_per_unit,
+                                               nonnegative=args.nonnegative, fit=args.fit, fit_to=args.fit_to, ortho_height=ortho, mm_per_unit=args.mm_per_unit,
                                                eta=args.eta, exit=args.exit, matte=matte,
                                                progress=bar if bar.shown else None, context=ctx)
         d = est.dipole
@@ -210,14 +234,14 @@ def run_estimate(args):
                 ("sigma_t' [1/mm]", d.sigma_t_prime), ("l_d [mm]", d.diffuse_length),
                 ("R_total", d.total_reflectance), ("cond(A)", est.condition["A"]),
                 ("QMR iterations", est.solve["iterations"]), ("image error", est.solve["image_error"]),
-                ("fit error", est.solve["fit_error"])]
+                ("fit error", est.solve["fit_error"]), ("Hermite R_total", est.hermite.total_reflectance)]
         print("%-18s %12s %12s %12s" % ("", "R", "G", "B"))
         for name, values in rows:
             print("%-18s %12.5g %12.5g %12.5g" % ((name,) + tuple(values)))
         if args.compare:
             out = Path(args.compare)
             out.mkdir(parents=True, exist_ok=True)
-            again = translucency.render(d, mesh_path, lights, camera, ortho_height=ortho,
+            again = translucency.render(est.fitted, mesh_path, lights, camera, ortho_height=ortho,
                                         mm_per_unit=args.mm_per_unit, exit=args.exit, highlight_deg=0, context=ctx)
             write_comparison(out, photo, again.image, est, d)
             print("wrote %s, %s" % ((out / "compare.png").resolve(), (out / "profile.png").resolve()))
@@ -241,7 +265,9 @@ def write_comparison(out, photo, rendered, est, dipole):
         ax.stairs(np.maximum(weights[:, c], 1e-12), edges, color=colour, alpha=0.5,
                   label="estimate, %s" % "RGB"[c])
         ax.plot(r, dipole.Rd(r)[:, c], color=colour, label="fitted dipole, %s" % "RGB"[c])
+        ax.plot(r, est.hermite.Rd(r)[:, c], color=colour, linestyle=":", label="Hermite (§3.4), %s" % "RGB"[c])
     ax.set_yscale("log")
+    ax.set_ylim(bottom=1e-6 * max(float(weights.max()), 1e-30))  # empty or negative bins sit below the frame
     ax.set_xlabel("r [mm]")
     ax.set_ylabel("R_d [1/mm²]")
     ax.legend(fontsize=7)
