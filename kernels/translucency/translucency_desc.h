@@ -38,16 +38,18 @@
   X(const uint, table_size) X(const REAL, table_reach) X(__global const bvh_node*, nodes) X(__global const REAL*, clusters) X(const REAL, max_solid_angle) \
   X(__global uint*, visits) X(const uint, first) X(const uint, count)
 
-/* The distance histograms of the estimate (histogram.cl, ARCUS_USE_HISTOGRAM; thesis
- * eq. 3.16): per equation point (a work-item each), Σ over the sources of their weights
- * (E·ΔA per channel) by the bin of their distance, `bins` of `bin_width` mm from 0;
- * sources farther than the last bin add nothing.  histograms: per row bins × 4 REALs,
- * bin-major: the three channels' sums, then Σ (w_R + w_G + w_B)·r (where in its bin the
- * weight lies). */
+/* Distance histograms (histogram.cl, ARCUS_USE_HISTOGRAM): per row point (a work-item
+ * each), Σ over the sources of their `weights_per_source` weights by the bin of their
+ * distance r: `bins` bins up to `reach` mm, uniform in r, or in √r when `sqrt_bins`
+ * (bin k covers reach·[(k/bins)², ((k+1)/bins)²)); sources beyond add nothing.
+ * histograms: per row bins × weights_per_source REALs, bin-major.  The estimate's eq.
+ * 3.16 (three channels) and the genetic search's cache (src/translucency/appearance.h). */
 #define ARCUS_MAX_HISTOGRAM_BINS 256
+#define ARCUS_MAX_HISTOGRAM_CELLS 1536 /* bins × weights_per_source, in private memory */
 #define ARCUS_TRANSLUCENCY_HISTOGRAM_ARGS(X)                                                          \
   X(__global const REAL*, rows) X(__global const REAL*, sources) X(__global const REAL*, weights)      \
-  X(__global REAL*, histograms) X(const uint, source_count) X(const uint, bins) X(const REAL, bin_width) \
-  X(const uint, first) X(const uint, count)
+  X(__global REAL*, histograms) X(const uint, source_count) X(const uint, bins)                       \
+  X(const uint, weights_per_source) X(const REAL, reach) X(const uint, sqrt_bins) X(const uint, first) \
+  X(const uint, count)
 
 #endif /* ARCUS_TRANSLUCENCY_DESC_H */

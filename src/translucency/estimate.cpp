@@ -7,14 +7,12 @@
 
 #include "bvh/bvh.h"
 #include "bvh/device_bvh.h"
-#include "core/buffer.h"
 #include "core/error.h"
 #include "core/format.h"
-#include "core/kernel_source.h"
-#include "core/launch.h"
 #include "translucency/basis.h"
 #include "translucency/dipole.h"
 #include "translucency/fit.h"
+#include "translucency/histograms.h"
 #include "translucency/least_squares.h"
 #include "translucency/surface.h"
 
@@ -25,10 +23,6 @@
 
 namespace arcus::translucency {
 namespace {
-
-const KernelSource kHistogram{"translucency/histogram",
-                              {"common/real.h", "translucency/translucency_desc.h", "translucency/histogram.cl"}, ""};
-ARCUS_KERNEL_ARGS(HistogramArg, "arcus_translucency_histogram", ARCUS_TRANSLUCENCY_HISTOGRAM_ARGS);
 
 // |c·n| below this is taken as this: ΔA = pixel area / |c·n| diverges at the
 // silhouette, where a pixel holds a sliver of surface turning away (thesis eq. 3.12).
@@ -65,37 +59,6 @@ void check_params(const arcus_translucency_estimate_params& p, uint32_t width, u
   require(width == p.camera.width && height == p.camera.height,
           "the photo's " + std::to_string(width) + " × " + std::to_string(height) + " is not params->camera's " +
               std::to_string(p.camera.width) + " × " + std::to_string(p.camera.height));
-}
-
-// The distance histograms (eq. 3.16) of every row point over the sources, on the device.
-std::vector<double> histograms(arcus_context_t* ctx, EstimateJob& job, const std::vector<double>& rows,
-                               const std::vector<double>& sources, const std::vector<double>& weights, uint32_t bins,
-                               double bin_width, const arcus_translucency_estimate_params& p, bool* cancelled) {
-  const size_t n = rows.size() / 3;
-  job.features = ARCUS_FEATURE_TRANSLUCENCY_HISTOGRAM;
-  const BuiltProgram built = build_job_program(ctx, job, kHistogram, Layout{1, 1});
-  DeviceBuffer out(ctx, n * 4 * bins * sizeof(double), "the distance histograms");
-  Launch<HistogramArg> launch(ctx, built.program);
-  launch.upload(HistogramArg::rows, rows, "the equation points");
-  launch.upload(HistogramArg::sources, sources, "the source points");
-  launch.upload(HistogramArg::weights, weights, "the sources' irradiance × area");
-  launch.bind(HistogramArg::histograms, &out);
-  launch.bind_value(HistogramArg::source_count, static_cast<cl_uint>(sources.size() / 3));
-  launch.bind_value(HistogramArg::bins, static_cast<cl_uint>(bins));
-  launch.bind_value(HistogramArg::bin_width, bin_width);
-  SliceRange slices;
-  slices.total = n;
-  slices.first_units = 64;
-  slices.progress = p.progress;
-  slices.progress_user = p.progress_user;
-  *cancelled = launch.run_slices(slices, [&](uint64_t first, uint64_t end) {
-    launch.bind_value(HistogramArg::first, static_cast<cl_uint>(first));
-    launch.bind_value(HistogramArg::count, static_cast<cl_uint>(end - first));
-    return size_t(end - first);
-  }, &job.stats);
-  std::vector<double> h(n * 4 * bins, 0.0);
-  out.read(ctx, 0, h.size() * sizeof(double), h.data());
-  return h;
 }
 
 // The object's diameter, the largest distance between two of its points, by the double
@@ -321,8 +284,15 @@ std::unique_ptr<EstimateJob> estimate(arcus_context_t* ctx, const geometry::Mesh
   const auto histogram_start = std::chrono::steady_clock::now();
   const uint32_t m = p.basis_count, bins = fine_bins_for(p.basis, m);
   res.r_max_mm = p.r_max_mm > 0 ? p.r_max_mm : diameter(surface);
-  const std::vector<double> hist =
-      histograms(ctx, *job, rows, source_points, weights, bins, res.r_max_mm / bins, p, cancelled);
+  HistogramRequest request;
+  request.rows = &rows;
+  request.sources = &source_points;
+  request.weights = &weights;
+  request.bins = bins;
+  request.reach = res.r_max_mm;
+  request.progress = p.progress;
+  request.progress_user = p.progress_user;
+  const std::vector<double> hist = distance_histograms(ctx, *job, request, cancelled);
   res.histogram_seconds = seconds_since(histogram_start);
 
   const auto solve_start = std::chrono::steady_clock::now();
@@ -375,7 +345,7 @@ std::unique_ptr<EstimateJob> estimate(arcus_context_t* ctx, const geometry::Mesh
       job->near[3 * i + size_t(c)] = near[i];
       for (uint32_t h = 0; h < m; ++h) a[i * m + h] = near[i] * near_disc[h];
       for (uint32_t k = near_bins; k < bins; ++k) {
-        const double in_bin = hist[(i * bins + k) * 4 + size_t(c)];
+        const double in_bin = hist[(i * bins + k) * 3 + size_t(c)];
         if (in_bin == 0) continue;
         for (uint32_t h = 0; h < m; ++h) a[i * m + h] += in_bin * basis[size_t(k) * m + h];
       }
@@ -404,7 +374,7 @@ std::unique_ptr<EstimateJob> estimate(arcus_context_t* ctx, const geometry::Mesh
       fit = fit_to_profile(job->edges, averages, p.eta);
     } else {
       std::vector<double> channel_hist(n * bins);
-      for (size_t i = 0; i < n * bins; ++i) channel_hist[i] = hist[i * 4 + size_t(c)];
+      for (size_t i = 0; i < n * bins; ++i) channel_hist[i] = hist[i * 3 + size_t(c)];
       fit = fit_to_image(fine_edges, channel_hist, near_bins, near, near_radius, b_channel, p.eta);
     }
     res.dipole.sigma_a[c] = fit.channel.sigma_a;
