@@ -221,6 +221,70 @@ TEST_F(TranslucencyRender, HierarchicalAgreesWithBruteForce) {
   }
 }
 
+// The genetic search from C: a 24-pixel render of the test medium as the target, a few
+// generations; the history's best never rises, the callback sees every generation and
+// stops the search when asked (tests/python/test_translucency_genetic.py checks what it
+// finds).
+int32_t stop_after_two(void* user, uint32_t generation, double, const double*) {
+  ++*static_cast<uint32_t*>(user);
+  return generation >= 2;
+}
+
+TEST_F(TranslucencyRender, AGeneticSearchRunsFromCAndStopsWhenAsked) {
+  std::vector<double> v;
+  std::vector<uint32_t> t;
+  icosphere(2, &v, &t);
+  MeshHandle mesh(ctx(), v, t);
+  auto p = looking_down(24, 0);
+  p.camera.position[2] = 4;
+  p.mm_per_unit = 10;
+  const std::vector<arcus_directional_light> lights{{{1, 1, 1}, {1, 0.8, 0.6}}};
+  const Image target = render(mesh.mesh, test_medium(), lights, p);
+  arcus_genetic_params g{};
+  ASSERT_EQ(arcus_translucency_genetic_params_init(ARCUS_GENETIC_DIPOLE, &g), ARCUS_SUCCESS);
+  EXPECT_EQ(g.population, 40u);
+  EXPECT_EQ(g.initial[7], 1.3);  // Table 3.1's η
+  g.camera = p.camera;
+  g.mm_per_unit = p.mm_per_unit;
+  g.population = 8;
+  g.generations = 4;
+  arcus_job_t* job = nullptr;
+  ASSERT_EQ(arcus_translucency_genetic(ctx(), mesh.mesh, 24, 24, target.rgb.data(), lights.size(), lights.data(), &g,
+                                       &job),
+            ARCUS_SUCCESS)
+      << last_error();
+  arcus_genetic_result r{};
+  ASSERT_EQ(arcus_job_get_translucency_genetic(job, &r), ARCUS_SUCCESS);
+  EXPECT_EQ(r.gene_count, 9u);
+  EXPECT_EQ(r.generations_run, 4u);
+  EXPECT_EQ(r.evaluations, 8u + 4u * 6u);  // 80% of 8, rounded: 6 replaced a generation
+  std::vector<double> best(5), mean(5), genes(5 * 9);
+  ASSERT_EQ(arcus_job_get_translucency_genetic_history(job, best.data(), mean.data(), genes.data()), ARCUS_SUCCESS);
+  for (size_t k = 1; k < best.size(); ++k) EXPECT_LE(best[k], best[k - 1]);
+  EXPECT_EQ(best.back(), r.best_fitness);
+  std::vector<float> image(24 * 24 * 3);
+  ASSERT_EQ(arcus_job_get_translucency_genetic_image(job, image.data()), ARCUS_SUCCESS);
+  arcus_job_release(job);
+  uint32_t calls = 0;
+  g.on_generation = stop_after_two;
+  g.generation_user = &calls;
+  job = nullptr;
+  EXPECT_EQ(arcus_translucency_genetic(ctx(), mesh.mesh, 24, 24, target.rgb.data(), lights.size(), lights.data(), &g,
+                                       &job),
+            ARCUS_ERROR_CANCELLED);
+  EXPECT_EQ(calls, 3u);  // generations 0, 1, 2
+  ASSERT_NE(job, nullptr);
+  ASSERT_EQ(arcus_job_get_translucency_genetic(job, &r), ARCUS_SUCCESS);
+  EXPECT_EQ(r.generations_run, 2u);
+  arcus_job_release(job);
+  g.population = 1;
+  job = nullptr;
+  expect_invalid(arcus_translucency_genetic(ctx(), mesh.mesh, 24, 24, target.rgb.data(), lights.size(),
+                                            lights.data(), &g, &job),
+                 "params->population", "population 1");
+  EXPECT_EQ(job, nullptr);
+}
+
 // A light from below reaches the top only through 10 mm of medium (8–20 diffusion
 // lengths: e^{−8} and less); a plate above the slab's centre shadows it.
 TEST_F(TranslucencyRender, LightsFacingAwayAndOccludersGiveNoLight) {

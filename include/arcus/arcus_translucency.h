@@ -312,6 +312,90 @@ ARCUS_API arcus_status arcus_job_get_translucency_system(arcus_job_t* job, uint3
 ARCUS_API arcus_status arcus_job_get_translucency_sources(arcus_job_t* job, double* rows, double* sources,
                                                           double* source_weights, double* near_irradiance);
 
+/* ---- genetic inverse rendering (thesis §3.2, §5.1) ------------------------------------
+ * The genes of a model whose render best matches a target image of a known mesh under
+ * known directional lights and camera: per-pixel least squares in YCbCr (the thesis'
+ * main text) or RGB (its footnote), as the relative RMS difference over the object's
+ * pixels.  Each individual is a matrix–vector product over a cache of what does not
+ * depend on the genes (src/translucency/appearance.h), not a render.  The same
+ * parameters, seed and device give the same history bit for bit. */
+typedef enum arcus_genetic_model {
+  ARCUS_GENETIC_DIPOLE = 0, /* nine genes: σ_a R G B, σ_s R G B (mm⁻¹), g, η, b (degrees):
+                               the renderer's dipole with its Fresnel-weighted highlight  */
+  ARCUS_GENETIC_PHONG = 1   /* five genes: k_d R G B, k_s, b (degrees): eq. 3.2–3.3, opaque */
+} arcus_genetic_model;
+
+typedef enum arcus_fitness_space { ARCUS_FITNESS_YCBCR = 0, ARCUS_FITNESS_RGB = 1 } arcus_fitness_space;
+
+#define ARCUS_GENETIC_MAX_GENES 9
+
+/* After each generation (0: the seeded population) with the best individual so far; a
+ * non-zero return stops the search (ARCUS_ERROR_CANCELLED, the history so far kept). */
+typedef int32_t (*arcus_generation_callback)(void* user, uint32_t generation, double best_fitness,
+                                             const double* best_genes);
+
+typedef struct arcus_genetic_params {
+  arcus_camera camera;       /* as for a render; the target's size is its own          */
+  double ortho_height;       /* > 0: orthographic; 0: pinhole                            */
+  double mm_per_unit;        /* > 0                                                     */
+  int32_t model;             /* arcus_genetic_model                                      */
+  uint32_t population;       /* 2..10000 (40, §5.1)                                      */
+  uint32_t generations;      /* 0..100000 (50, §5.1)                                     */
+  double replacement;        /* the fraction replaced each generation, the best kept (0.8) */
+  double crossover;          /* the probability a child is a one-point crossover (0.8)    */
+  double mutation;           /* the probability each gene of a child mutates (0.8)        */
+  double mutation_range;     /* ± this × max(|x|, 10% of the gene's range) at most (0.3)   */
+  double fitness_threshold;  /* stop once the best fitness is at most this (0: never)      */
+  int32_t fitness_space;     /* arcus_fitness_space (YCBCR)                               */
+  uint64_t seed;
+  double initial[ARCUS_GENETIC_MAX_GENES]; /* the seeded individual (Table 3.1)            */
+  double lower[ARCUS_GENETIC_MAX_GENES];   /* bounds per gene                             */
+  double upper[ARCUS_GENETIC_MAX_GENES];
+  arcus_progress_callback progress;        /* the cache's slices, then the generations    */
+  void* progress_user;
+  arcus_generation_callback on_generation; /* may be NULL                                 */
+  void* generation_user;
+} arcus_genetic_params;
+
+/* Defaults for `model`: Table 3.1's initial genes (dipole: σ_a = σ_s = 1, g = 0, η = 1.3,
+ * b = 10°; Phong: k_d = 0.5, k_s = 0.5, b = 10°), bounds (dipole: σ_a [1e-4, 5], σ_s
+ * [0.01, 10], g [−0.9, 0.95], η [1.05, 2], b [1, 45]; Phong: k_d, k_s [0, 1], b [1, 45]),
+ * §5.1's 40 individuals, 50 generations, 0.8 / 0.8 / 0.8, ±30%, YCbCr, seed 0, the
+ * render defaults' camera, 1 mm per unit. */
+ARCUS_API arcus_status arcus_translucency_genetic_params_init(int32_t model, arcus_genetic_params* params);
+
+/* Searches for the genes whose render of `mesh` under `lights` best matches `target`
+ * (width × height × 3 floats, linear RGB radiance, top row first; its pixels where the
+ * mesh is seen are compared). */
+ARCUS_API arcus_status arcus_translucency_genetic(arcus_context_t* ctx, arcus_mesh_t* mesh, uint32_t width,
+                                                  uint32_t height, const float* target, size_t light_count,
+                                                  const arcus_directional_light* lights,
+                                                  const arcus_genetic_params* params, arcus_job_t** job);
+
+typedef struct arcus_genetic_result {
+  int32_t model;
+  uint32_t gene_count;
+  uint32_t generations_run;
+  uint64_t evaluations;                  /* individuals whose fitness was computed        */
+  double best[ARCUS_GENETIC_MAX_GENES];  /* the best genes                                */
+  double best_fitness;                   /* their relative RMS difference from the target  */
+  double sigma_s_prime[3];               /* dipole: (1 − g)σ_s, what multiple scattering sees:
+                                            σ_s and g alone are not identifiable          */
+  uint32_t pixels;                       /* the target's pixels compared                  */
+  uint64_t samples;                      /* the cache's irradiance samples                */
+  double cache_seconds;                  /* the cache (geometry, irradiance, histograms)  */
+  double search_seconds;                 /* the generations                              */
+} arcus_genetic_result;
+
+ARCUS_API arcus_status arcus_job_get_translucency_genetic(arcus_job_t* job, arcus_genetic_result* result);
+/* Per generation run (generations_run + 1 values, the first the seeded population):
+ * the best and mean fitness and the best genes (gene_count each); any pointer may be NULL. */
+ARCUS_API arcus_status arcus_job_get_translucency_genetic_history(arcus_job_t* job, double* best_fitness,
+                                                                  double* mean_fitness, double* best_genes);
+/* The best individual's image through the cache (width × height × 3 floats; 0 where the
+ * mesh is not seen). */
+ARCUS_API arcus_status arcus_job_get_translucency_genetic_image(arcus_job_t* job, float* rgb);
+
 #ifdef __cplusplus
 }
 #endif

@@ -13,6 +13,7 @@
 #include "translucency/materials.h"
 #include "translucency/estimate.h"
 #include "translucency/hermite.h"
+#include "translucency/inverse.h"
 #include "translucency/render.h"
 
 using namespace arcus;
@@ -343,6 +344,72 @@ arcus_status arcus_job_get_translucency_sources(arcus_job_t* job, double* rows, 
     copy_out(j->sources, sources);
     copy_out(j->source_weights, source_weights);
     copy_out(j->near, near_irradiance);
+  });
+}
+
+arcus_status arcus_translucency_genetic_params_init(int32_t model, arcus_genetic_params* params) {
+  return without_context([&] {
+    require_pointer(params, "params");
+    require(model == ARCUS_GENETIC_DIPOLE || model == ARCUS_GENETIC_PHONG,
+            "model = " + std::to_string(model) + " is not ARCUS_GENETIC_DIPOLE (0) or ARCUS_GENETIC_PHONG (1)");
+    arcus_translucency_render_params render{};
+    arcus_translucency_render_params_init(&render);
+    arcus_genetic_params p{};
+    p.camera = render.camera;
+    p.mm_per_unit = 1;
+    p.model = model;
+    p.population = 40;
+    p.generations = 50;
+    p.replacement = p.crossover = p.mutation = 0.8;
+    p.mutation_range = 0.3;
+    p.fitness_space = ARCUS_FITNESS_YCBCR;
+    translucency::genetic_defaults(model, &p);
+    *params = p;
+  });
+}
+
+arcus_status arcus_translucency_genetic(arcus_context_t* ctx, arcus_mesh_t* mesh, uint32_t width, uint32_t height,
+                                        const float* target, size_t light_count, const arcus_directional_light* lights,
+                                        const arcus_genetic_params* params, arcus_job_t** job) {
+  return on<arcus_context_s>(ctx, kContextHandle, "ctx", [&](arcus_context_s*, std::string* message) {
+    require_pointer(job, "job");
+    *job = nullptr;
+    const auto* m = object_of<arcus_mesh_s>(ctx, mesh, geometry::kMeshHandle, "mesh");
+    require_pointer(params, "params");
+    require_pointer(target, "target");
+    require(light_count <= 64, "light_count = " + std::to_string(light_count) + " is not 1..64");
+    if (light_count > 0) require_pointer(lights, "lights");
+    const std::vector<arcus_directional_light> list(lights, lights + light_count);
+    bool cancelled = false;
+    auto j = translucency::genetic_inverse(ctx, m->mesh, width, height, target, list, *params, &cancelled);
+    retain_context(ctx);  // the job's reference
+    *job = j.release();
+    if (!cancelled) return ARCUS_SUCCESS;
+    *message = "the search was cancelled: the history so far is kept";
+    return ARCUS_ERROR_CANCELLED;
+  });
+}
+
+arcus_status arcus_job_get_translucency_genetic(arcus_job_t* job, arcus_genetic_result* result) {
+  return on_job<translucency::GeneticJob>(job, "a genetic search", [&](translucency::GeneticJob* j) {
+    require_pointer(result, "result");
+    *result = j->result;
+  });
+}
+
+arcus_status arcus_job_get_translucency_genetic_history(arcus_job_t* job, double* best_fitness, double* mean_fitness,
+                                                        double* best_genes) {
+  return on_job<translucency::GeneticJob>(job, "a genetic search", [&](translucency::GeneticJob* j) {
+    copy_out(j->best_fitness, best_fitness);
+    copy_out(j->mean_fitness, mean_fitness);
+    copy_out(j->best_genes, best_genes);
+  });
+}
+
+arcus_status arcus_job_get_translucency_genetic_image(arcus_job_t* job, float* rgb) {
+  return on_job<translucency::GeneticJob>(job, "a genetic search", [&](translucency::GeneticJob* j) {
+    require_pointer(rgb, "rgb");
+    copy_out(j->image, rgb);
   });
 }
 

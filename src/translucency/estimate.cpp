@@ -147,10 +147,7 @@ std::unique_ptr<EstimateJob> estimate(arcus_context_t* ctx, const geometry::Mesh
   check_params(p, width, height);
   const std::vector<Light> light_list = lights_of(lights);
   const size_t full = size_t(width) * height;
-  for (size_t i = 0; i < 3 * full; ++i)
-    require(std::isfinite(photo[i]) && photo[i] >= 0,
-            "photo[" + std::to_string(i) + "] = " + number(photo[i]) + " (pixel " + std::to_string(i / 3 % width) +
-                ", " + std::to_string(i / 3 / width) + ") is not a finite radiance >= 0");
+  check_radiance(photo, width, height, "photo");
   *cancelled = false;
   auto job = std::make_unique<EstimateJob>(ctx);
   arcus_translucency_estimate_result& res = job->result;

@@ -185,6 +185,13 @@ void check_view(const arcus_camera& camera, double ortho_height, double mm_per_u
           "params->exit = " + std::to_string(exit) + " is not ARCUS_EXIT_THESIS (0) or ARCUS_EXIT_NORMALIZED (1)");
 }
 
+void check_radiance(const float* pixels, uint32_t width, uint32_t height, const char* name) {
+  for (size_t i = 0; i < 3 * size_t(width) * height; ++i)
+    require(std::isfinite(pixels[i]) && pixels[i] >= 0,
+            std::string(name) + "[" + std::to_string(i) + "] = " + number(pixels[i]) + " (pixel " +
+                std::to_string(i / 3 % width) + ", " + std::to_string(i / 3 / width) + ") is not a finite radiance >= 0");
+}
+
 scene::CameraDesc camera_in_mm(const arcus_camera& camera, double mm_per_unit) {
   scene::CameraDesc c = scene::camera_desc(camera);
   c.position = mm_per_unit * c.position;

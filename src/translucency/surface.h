@@ -68,6 +68,10 @@ std::vector<Light> lights_of(const std::vector<arcus_directional_light>& lights)
 // ("params->camera", "params->ortho_height", "params->mm_per_unit", "params->exit").
 void check_view(const arcus_camera& camera, double ortho_height, double mm_per_unit, int32_t exit);
 
+// An image of linear radiance (width × height × 3 floats) checked: every value finite
+// and >= 0, else an error naming `name`, the index and the pixel.
+void check_radiance(const float* pixels, uint32_t width, uint32_t height, const char* name);
+
 // The caller's camera (mesh units) with positions in mm, as the surface's.
 scene::CameraDesc camera_in_mm(const arcus_camera& camera, double mm_per_unit);
 

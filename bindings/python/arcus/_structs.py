@@ -362,6 +362,51 @@ class ProfileTableStruct(ctypes.Structure):
     ]
 
 
+#: int32_t (*arcus_generation_callback)(void* user, uint32_t generation, double best, const double* genes)
+GENERATION_CALLBACK = ctypes.CFUNCTYPE(c_int32, c_void_p, c_uint32, c_double, ctypes.POINTER(c_double))
+
+
+class GeneticParamsStruct(ctypes.Structure):
+    _fields_ = [
+        ("camera", CameraStruct),
+        ("ortho_height", c_double),
+        ("mm_per_unit", c_double),
+        ("model", c_int32),
+        ("population", c_uint32),
+        ("generations", c_uint32),
+        ("replacement", c_double),
+        ("crossover", c_double),
+        ("mutation", c_double),
+        ("mutation_range", c_double),
+        ("fitness_threshold", c_double),
+        ("fitness_space", c_int32),
+        ("seed", c_uint64),
+        ("initial", c_double * 9),
+        ("lower", c_double * 9),
+        ("upper", c_double * 9),
+        ("progress", PROGRESS_CALLBACK),
+        ("progress_user", c_void_p),
+        ("on_generation", GENERATION_CALLBACK),
+        ("generation_user", c_void_p),
+    ]
+
+
+class GeneticResultStruct(ctypes.Structure):
+    _fields_ = [
+        ("model", c_int32),
+        ("gene_count", c_uint32),
+        ("generations_run", c_uint32),
+        ("evaluations", c_uint64),
+        ("best", c_double * 9),
+        ("best_fitness", c_double),
+        ("sigma_s_prime", c_double * 3),
+        ("pixels", c_uint32),
+        ("samples", c_uint64),
+        ("cache_seconds", c_double),
+        ("search_seconds", c_double),
+    ]
+
+
 class TranslucencyEstimateParamsStruct(ctypes.Structure):
     _fields_ = [
         ("camera", CameraStruct),

@@ -2,6 +2,7 @@
 
     arcus render SCENE [-o OUT ...] [--quick]   an image of any engine's scene
     arcus bssrdf render MESH [--material M] [--light ...]   a translucent object (dipole)
+    arcus inverse genetic SCENE.json --target PHOTO.exr   material genes by a genetic search
     arcus trace | view | ocean | rainbow | sweep | bench | info | gallery
 
 Bad input (a scene's error names the file and the key path) prints one line and exits
@@ -12,7 +13,7 @@ import argparse
 import sys
 
 from .. import __version__
-from . import bssrdf, gallery, info, render, tools
+from . import bssrdf, gallery, info, inverse, render, tools
 
 EXIT_BAD_INPUT = 2
 
@@ -24,6 +25,7 @@ def parser():
     sub = p.add_subparsers(dest="command", metavar="COMMAND", required=True)
     render.add(sub)
     bssrdf.add(sub)
+    inverse.add(sub)
     tools.add(sub)
     info.add(sub)
     gallery.add(sub)

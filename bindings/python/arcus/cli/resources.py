@@ -77,3 +77,16 @@ def script(relative):
     if not path.is_file():
         raise ArgumentError("arcus: %s is missing from %s" % (relative, share_dir()))
     return path
+
+
+def mesh(name):
+    """A mesh file: the path given, or one of data/meshes by its name without extension."""
+    if Path(name).is_file():
+        return Path(name)
+    meshes = share_dir() / "data" / "meshes"
+    found = sorted(meshes.glob(name + ".*")) if "/" not in name else []
+    found = [f for f in found if f.suffix.lower() in (".obj", ".ply", ".off", ".stl")]
+    if len(found) == 1:
+        return found[0]
+    raise ArgumentError("%s: neither a mesh file nor a bundled mesh (%s)" % (
+        name, ", ".join(sorted(p.stem for p in meshes.glob("*.obj")) + sorted(p.stem for p in meshes.glob("*.ply")))))
