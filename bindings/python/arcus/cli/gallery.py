@@ -67,6 +67,9 @@ BENCH_STEPS = [
      "Thesis §4.4: the ray-cast phase function of a drop against Lorenz–Mie as the grid grows."),
     ("sky", "Rainbow skies: settings against error and time",
      "Thesis §5.5.2: wavelengths, drop-size bins, sun points and march steps against a fine reference."),
+    ("translucency", "Translucency: basis, resolution and search against error and time",
+     "Thesis Table 3.2 and §5.1: the estimate's resolution, basis count and family, and the genetic search's "
+     "population and generations, against recovery error and time per stage."),
 ]
 
 
@@ -129,6 +132,25 @@ def steps(full):
                       + ([] if full else ["--quick", "--width", "400", "--height", "300"] + tables), "sky",
                       docs_image="sky/%s.png" % name if name in ("double_bow", "supernumerary") else "",
                       expected_seconds={"halo": 75.0, "sundogs": 65.0, "twinned": 26.0}.get(name, 3.0)))
+    s.append(Step("Translucency", "Marble through the dipole",
+                  "Thesis eq. 3.6–3.8: a marble torus 54 mm across (Jensen et al. 2001's coefficients) by the "
+                  "hierarchical gather of Jensen & Buhler 2002, with a Fresnel-weighted highlight.",
+                  ["bssrdf", "render", "torus", "--material", "marble", "--mm-per-unit", "20", "--position", "0",
+                   "2.6", "2.6", "--ortho-height", "3.2", "--light", "0.2", "1", "0.6", "--light", "-0.5", "0.3", "-1", "0.6",
+                   "-o", "{out}/marble.png", "--quiet"] + ([] if full else ["--width", "200", "--height", "200"]),
+                  "translucency/render", expected_seconds=8.0))
+    s.append(Step("Translucency", "A photograph and its estimated BSSRDF",
+                  "Thesis §3.3.1, Fig. 3.8: a synthetic photograph of an apple sphere, its profile estimated by "
+                  "QMR on the distance histograms and fitted by the dipole; photo | re-render | difference, and "
+                  "the profile against the dipole and §3.4's Hermite curve.",
+                  ["apps/translucency/showcase.py", "estimate", "--out", "{out}"]
+                  + ([] if full else ["--side", "128"]), "translucency/estimate",
+                  pictures=["compare.png", "profile.png"], expected_seconds=12.0))
+    s.append(Step("Translucency", "Table 5.1: genetic inverse rendering",
+                  "Thesis §3.2, §5.1: 40 individuals × 50 generations from Table 3.1's genes toward Table 5.1's "
+                  "medium; the target beside the best render, and the best genes every tenth generation.",
+                  ["apps/translucency/showcase.py", "genetic", "--out", "{out}"]
+                  + ([] if full else ["--side", "48"]), "translucency/genetic", expected_seconds=10.0))
     for engine, title, caption in BENCH_STEPS:
         s.append(Step("What accuracy costs in time", title, caption,
                       ["bench", engine, "--out", "{out}"] + (["--full"] if full else []), "bench/" + engine,
