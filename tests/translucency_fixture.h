@@ -30,7 +30,7 @@ struct MeshHandle {
 };
 
 // The box [lo, hi], its 12 triangles wound outwards.
-void box(const double lo[3], const double hi[3], std::vector<double>* v, std::vector<uint32_t>* t) {
+inline void box(const double lo[3], const double hi[3], std::vector<double>* v, std::vector<uint32_t>* t) {
   const uint32_t base = static_cast<uint32_t>(v->size() / 3);
   for (int k = 0; k < 8; ++k)
     v->insert(v->end(), {k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]});
