@@ -244,6 +244,7 @@ TEST_F(TranslucencyRender, AGeneticSearchRunsFromCAndStopsWhenAsked) {
   ASSERT_EQ(arcus_translucency_genetic_params_init(ARCUS_GENETIC_DIPOLE, &g), ARCUS_SUCCESS);
   EXPECT_EQ(g.population, 40u);
   EXPECT_EQ(g.initial[7], 1.3);  // Table 3.1's η
+  EXPECT_EQ(g.polish_steps, 20u);
   g.camera = p.camera;
   g.mm_per_unit = p.mm_per_unit;
   g.population = 8;
@@ -261,7 +262,10 @@ TEST_F(TranslucencyRender, AGeneticSearchRunsFromCAndStopsWhenAsked) {
   std::vector<double> best(5), mean(5), genes(5 * 9);
   ASSERT_EQ(arcus_job_get_translucency_genetic_history(job, best.data(), mean.data(), genes.data()), ARCUS_SUCCESS);
   for (size_t k = 1; k < best.size(); ++k) EXPECT_LE(best[k], best[k - 1]);
-  EXPECT_EQ(best.back(), r.best_fitness);
+  EXPECT_EQ(best.back(), r.search_fitness);
+  EXPECT_LE(r.best_fitness, r.search_fitness);  // the polish keeps only steps that lower it
+  EXPECT_LE(r.polish_steps, 20u);
+  EXPECT_GT(r.polish_evaluations, 0u);
   std::vector<float> image(24 * 24 * 3);
   ASSERT_EQ(arcus_job_get_translucency_genetic_image(job, image.data()), ARCUS_SUCCESS);
   arcus_job_release(job);
@@ -282,6 +286,12 @@ TEST_F(TranslucencyRender, AGeneticSearchRunsFromCAndStopsWhenAsked) {
   expect_invalid(arcus_translucency_genetic(ctx(), mesh.mesh, 24, 24, target.rgb.data(), lights.size(),
                                             lights.data(), &g, &job),
                  "params->population", "population 1");
+  EXPECT_EQ(job, nullptr);
+  g.population = 8;
+  g.polish_steps = 1001;
+  expect_invalid(arcus_translucency_genetic(ctx(), mesh.mesh, 24, 24, target.rgb.data(), lights.size(),
+                                            lights.data(), &g, &job),
+                 "params->polish_steps", "1001");
   EXPECT_EQ(job, nullptr);
 }
 

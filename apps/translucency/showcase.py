@@ -157,10 +157,14 @@ def search(out, side):
                                              " | ".join("%.4g" % value(rows[g][1]) for g in sorted(rows))))
     lines.append("| fitness | | %s |" % " | ".join("%.3f" % rows[g][0] for g in sorted(rows)))
     with open(os.path.join(out, "table_5_1.md"), "w") as f:
-        f.write("Table 5.1's search (40 × 50, seed 1) at %d², the target beside the best render; σ′_s = "
-                "(1 − g)σ_s found: %s against 1.10 1.31 1.50 (%.1f s; docs/translucency.md: five seeds, and "
-                "why σ_s and g alone are not identifiable):\n\n%s\n"
-                % (side, " ".join("%.3g" % v for v in found.sigma_s_prime), found.timings["total"], "\n".join(lines)))
+        f.write("Table 5.1's search (40 × 50, seed 1) at %d², the target beside the best render; the search's "
+                "best fitness %.3f, %.4f after %d polish steps; σ′_s = (1 − g)σ_s found: %s against 1.10 1.31 "
+                "1.50, η %.3f against 1.5, b %.1f° against 20° (%.1f s; docs/translucency.md: five seeds, the "
+                "polish, and why σ_s and g alone are not identifiable).  The search's best genes every tenth "
+                "generation:\n\n%s\n"
+                % (side, found.search_fitness, found.fitness, found.polish_steps,
+                   " ".join("%.3g" % v for v in found.sigma_s_prime), found.best["eta"], found.best["b"],
+                   found.timings["total"], "\n".join(lines)))
 
 
 def main():

@@ -355,13 +355,17 @@ typedef struct arcus_genetic_params {
   void* progress_user;
   arcus_generation_callback on_generation; /* may be NULL                                 */
   void* generation_user;
+  uint32_t polish_steps;     /* then at most this many Levenberg–Marquardt steps through the
+                                same cache from each of the last population's 4 best, the best
+                                kept: the dipole in σ_a, σ′_s, η, b (g held), in ln of the genes
+                                bounded above 0 (20; 0: the thesis' search alone); 0..1000    */
 } arcus_genetic_params;
 
 /* Defaults for `model`: Table 3.1's initial genes (dipole: σ_a = σ_s = 1, g = 0, η = 1.3,
  * b = 10°; Phong: k_d = 0.5, k_s = 0.5, b = 10°), bounds (dipole: σ_a [1e-4, 5], σ_s
  * [0.01, 10], g [−0.9, 0.95], η [1.05, 2], b [1, 45]; Phong: k_d, k_s [0, 1], b [1, 45]),
  * §5.1's 40 individuals, 50 generations, 0.8 / 0.8 / 0.8, ±30%, YCbCr, seed 0, the
- * render defaults' camera, 1 mm per unit. */
+ * render defaults' camera, 1 mm per unit, 20 polish steps. */
 ARCUS_API arcus_status arcus_translucency_genetic_params_init(int32_t model, arcus_genetic_params* params);
 
 /* Searches for the genes whose render of `mesh` under `lights` best matches `target`
@@ -385,6 +389,10 @@ typedef struct arcus_genetic_result {
   uint64_t samples;                      /* the cache's irradiance samples                */
   double cache_seconds;                  /* the cache (geometry, irradiance, histograms)  */
   double search_seconds;                 /* the generations                              */
+  double search_fitness;                 /* the search's best, before the polish          */
+  uint32_t polish_steps;                 /* the kept polish's accepted steps              */
+  uint64_t polish_evaluations;           /* the images the polishes computed              */
+  double polish_seconds;
 } arcus_genetic_result;
 
 ARCUS_API arcus_status arcus_job_get_translucency_genetic(arcus_job_t* job, arcus_genetic_result* result);

@@ -362,6 +362,7 @@ arcus_status arcus_translucency_genetic_params_init(int32_t model, arcus_genetic
     p.generations = 50;
     p.replacement = p.crossover = p.mutation = 0.8;
     p.mutation_range = 0.3;
+    p.polish_steps = 20;
     p.fitness_space = ARCUS_FITNESS_YCBCR;
     translucency::genetic_defaults(model, &p);
     *params = p;

@@ -89,7 +89,121 @@ GeneticHistory genetic_search(const GeneticSettings& s, const Fitness& fitness, 
     }
     record(generation);
   }
+  for (const Individual& i : population) history.last.push_back(i.genes);
   return history;
+}
+
+namespace {
+
+double norm2(const std::vector<double>& r) {
+  double sum = 0;
+  for (double v : r) sum += v * v;
+  return sum;
+}
+
+// Solves the symmetric positive definite n × n system m x = b by Cholesky; false when
+// m is not positive definite.
+bool cholesky_solve(std::vector<double> m, size_t n, std::vector<double>* b) {
+  for (size_t j = 0; j < n; ++j) {
+    double d = m[j * n + j];
+    for (size_t k = 0; k < j; ++k) d -= m[j * n + k] * m[j * n + k];
+    if (!(d > 0)) return false;
+    m[j * n + j] = std::sqrt(d);
+    for (size_t i = j + 1; i < n; ++i) {
+      double v = m[i * n + j];
+      for (size_t k = 0; k < j; ++k) v -= m[i * n + k] * m[j * n + k];
+      m[i * n + j] = v / m[j * n + j];
+    }
+  }
+  std::vector<double>& x = *b;
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t k = 0; k < i; ++k) x[i] -= m[i * n + k] * x[k];
+    x[i] /= m[i * n + i];
+  }
+  for (size_t i = n; i-- > 0;) {
+    for (size_t k = i + 1; k < n; ++k) x[i] -= m[k * n + i] * x[k];
+    x[i] /= m[i * n + i];
+  }
+  return true;
+}
+
+}  // namespace
+
+PolishReport polish(const Residuals& residuals, const std::vector<double>& lower, const std::vector<double>& upper,
+                    uint32_t max_steps, std::vector<double>* genes) {
+  const size_t n = genes->size();
+  auto is_scale = [&](size_t g) { return lower[g] > 0; };
+  auto to_u = [&](const std::vector<double>& x) {
+    std::vector<double> u(n);
+    for (size_t g = 0; g < n; ++g) u[g] = is_scale(g) ? std::log(x[g]) : x[g];
+    return u;
+  };
+  auto to_x = [&](const std::vector<double>& u) {
+    std::vector<double> x(n);
+    for (size_t g = 0; g < n; ++g) x[g] = std::clamp(is_scale(g) ? std::exp(u[g]) : u[g], lower[g], upper[g]);
+    return x;
+  };
+  PolishReport report;
+  std::vector<double> u = to_u(*genes), r = residuals(*genes);
+  ++report.evaluations;
+  double cost = norm2(r), lambda = 1e-3;
+  for (uint32_t step = 0; step < max_steps; ++step) {
+    // J (rows × n, column by column) by forward differences in u.
+    const size_t rows = r.size();
+    std::vector<std::vector<double>> jacobian(n);
+    for (size_t g = 0; g < n; ++g) {
+      const double h = is_scale(g) ? 1e-4 : 1e-4 * (upper[g] - lower[g]);
+      std::vector<double> moved = u;
+      moved[g] += h;
+      const std::vector<double> shifted = residuals(to_x(moved));
+      ++report.evaluations;
+      jacobian[g].resize(rows);
+      for (size_t i = 0; i < rows; ++i) jacobian[g][i] = (shifted[i] - r[i]) / h;
+    }
+    std::vector<double> jtj(n * n), jtr(n);
+    double largest = 0;
+    for (size_t a = 0; a < n; ++a) {
+      for (size_t b = 0; b <= a; ++b) {
+        double sum = 0;
+        for (size_t i = 0; i < rows; ++i) sum += jacobian[a][i] * jacobian[b][i];
+        jtj[a * n + b] = jtj[b * n + a] = sum;
+      }
+      double sum = 0;
+      for (size_t i = 0; i < rows; ++i) sum += jacobian[a][i] * r[i];
+      jtr[a] = sum;
+      largest = std::max(largest, jtj[a * n + a]);
+    }
+    bool improved = false;
+    for (int tries = 0; tries < 12 && !improved; ++tries, lambda *= 10) {
+      // Marquardt's scaling, with a floor for genes the image does not see (σ_s and g
+      // move σ′_s together: one direction of the dipole's genes has no effect).
+      std::vector<double> m = jtj, delta(n);
+      for (size_t g = 0; g < n; ++g) {
+        m[g * n + g] += lambda * std::max(jtj[g * n + g], 1e-12 * largest);
+        delta[g] = -jtr[g];
+      }
+      if (!cholesky_solve(m, n, &delta)) continue;
+      std::vector<double> next = u;
+      for (size_t g = 0; g < n; ++g) next[g] += delta[g];
+      const std::vector<double> x = to_x(next), rx = residuals(x);
+      ++report.evaluations;
+      const double c = norm2(rx);
+      if (std::isfinite(c) && c < cost) {
+        improved = true;
+        const bool settled = cost - c <= 1e-12 * cost;
+        u = to_u(x);
+        r = rx;
+        cost = c;
+        *genes = x;
+        ++report.steps;
+        lambda = std::max(lambda / 100, 1e-12);  // the loop's ×10 follows
+        if (settled) step = max_steps;
+      }
+    }
+    if (!improved) break;
+  }
+  report.fitness = std::sqrt(cost);
+  return report;
 }
 
 }  // namespace arcus::translucency

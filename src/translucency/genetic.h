@@ -28,6 +28,7 @@ struct GeneticSettings {
 struct GeneticHistory {
   std::vector<double> best_fitness, mean_fitness;  // per generation, the first the seeded one
   std::vector<double> best_genes;                  // per generation, genes.size() each
+  std::vector<std::vector<double>> last;           // the last population, best first
   uint64_t evaluations = 0;
   bool cancelled = false;
 };
@@ -37,5 +38,20 @@ using Fitness = std::function<double(const std::vector<double>& genes)>;
 using GenerationHook = std::function<bool(uint32_t generation, double best_fitness, const double* best_genes)>;
 
 GeneticHistory genetic_search(const GeneticSettings& settings, const Fitness& fitness, const GenerationHook& hook);
+
+// After the search (not in the thesis): Levenberg–Marquardt from `genes` on the residual
+// vector whose norm is the fitness, in ln x for genes bounded above 0 (scales) and x for
+// the others, the Jacobian by forward differences, clamped to the bounds; a step is kept
+// only when the fitness falls, so it never rises.  The search finds the valley; its
+// floor, long and shallow (a denser medium of the same albedo fits nearly as well), is
+// what 40 × 50 random steps do not walk and a Gauss–Newton step does.
+using Residuals = std::function<std::vector<double>(const std::vector<double>& genes)>;
+struct PolishReport {
+  uint32_t steps = 0;        // accepted
+  uint64_t evaluations = 0;  // residual vectors computed
+  double fitness = 0;        // |r| at the end
+};
+PolishReport polish(const Residuals& residuals, const std::vector<double>& lower, const std::vector<double>& upper,
+                    uint32_t max_steps, std::vector<double>* genes);
 
 }  // namespace arcus::translucency

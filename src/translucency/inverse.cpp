@@ -59,6 +59,7 @@ void check_params(const arcus_genetic_params& p, uint32_t width, uint32_t height
   require(p.population >= 2 && p.population <= 10000,
           "params->population = " + std::to_string(p.population) + " is not 2..10000");
   require(p.generations <= 100000, "params->generations = " + std::to_string(p.generations) + " is not 0..100000");
+  require(p.polish_steps <= 1000, "params->polish_steps = " + std::to_string(p.polish_steps) + " is not 0..1000");
   for (auto [value, name] : {std::pair{p.replacement, "replacement"}, std::pair{p.crossover, "crossover"},
                              std::pair{p.mutation, "mutation"}})
     require(std::isfinite(value) && value >= 0 && value <= 1,
@@ -165,15 +166,23 @@ std::unique_ptr<GeneticJob> genetic_inverse(arcus_context_t* ctx, const geometry
     for (int c = 0; c < 3; ++c) energy += wanted[3 * k + size_t(c)] * wanted[3 * k + size_t(c)];
   }
   require(energy > 0, "target: every pixel where the mesh is seen is black");
-  auto fitness = [&](const std::vector<double>& g) {
+  // Per pixel and channel of the fitness' space, (image − target)/sqrt(energy): the
+  // fitness is their norm, the relative RMS difference.
+  auto residuals = [&](const std::vector<double>& g) {
     const std::vector<double> image = image_of(cache, p.model, g.data());
-    double cost = 0;
+    std::vector<double> r(3 * n);
+    const double scale = 1 / std::sqrt(energy);
     for (size_t k = 0; k < n; ++k) {
       double v[3];
       to_space(p.fitness_space, &image[3 * k], v);
-      for (int c = 0; c < 3; ++c) cost += (v[c] - wanted[3 * k + size_t(c)]) * (v[c] - wanted[3 * k + size_t(c)]);
+      for (size_t c = 0; c < 3; ++c) r[3 * k + c] = (v[c] - wanted[3 * k + c]) * scale;
     }
-    return std::sqrt(cost / energy);
+    return r;
+  };
+  auto fitness = [&](const std::vector<double>& g) {
+    double cost = 0;
+    for (double v : residuals(g)) cost += v * v;
+    return std::sqrt(cost);
   };
 
   const auto search_start = std::chrono::steady_clock::now();
@@ -203,9 +212,52 @@ std::unique_ptr<GeneticJob> genetic_inverse(arcus_context_t* ctx, const geometry
   res.gene_count = genes;
   res.generations_run = static_cast<uint32_t>(history.best_fitness.size() - 1);
   res.evaluations = history.evaluations;
-  const double* best = &history.best_genes[history.best_genes.size() - genes];
+  std::vector<double> best_genes(history.best_genes.end() - genes, history.best_genes.end());
+  res.search_fitness = res.best_fitness = history.best_fitness.back();
+  if (p.polish_steps > 0 && !*cancelled) {
+    // From each of the last population's best kPolishStarts distinct individuals (the
+    // valley has more than one low point: from one start a channel can slide to its
+    // dense end, a short ℓ_d against σ′_s's bound), the best polish kept.  The dipole is
+    // polished in what the image determines: σ_a, σ′_s, η, b, with g held at the
+    // individual's (σ_s and g alone only move σ′_s: free, the pair would drift along
+    // that direction into σ_s's bound).  Phong's genes are all seen.
+    constexpr size_t kPolishStarts = 4;
+    const auto polish_start = std::chrono::steady_clock::now();
+    const bool dipole = p.model == ARCUS_GENETIC_DIPOLE;
+    std::vector<std::vector<double>> starts;
+    for (const std::vector<double>& genes_of : history.last)
+      if (starts.size() < kPolishStarts && std::find(starts.begin(), starts.end(), genes_of) == starts.end())
+        starts.push_back(genes_of);
+    for (const std::vector<double>& from : starts) {
+      const double g = dipole ? from[6] : 0;
+      auto to_genes = [&](const std::vector<double>& q) {
+        if (!dipole) return q;
+        return std::vector<double>{q[0], q[1], q[2], q[3] / (1 - g), q[4] / (1 - g), q[5] / (1 - g), g, q[6], q[7]};
+      };
+      std::vector<double> q = from, low = s.lower, high = s.upper;
+      if (dipole) {
+        q = {from[0], from[1], from[2], 0, 0, 0, from[7], from[8]};
+        low = {s.lower[0], s.lower[1], s.lower[2], 0, 0, 0, s.lower[7], s.lower[8]};
+        high = {s.upper[0], s.upper[1], s.upper[2], 0, 0, 0, s.upper[7], s.upper[8]};
+        for (int c = 0; c < 3; ++c) {
+          q[3 + c] = (1 - g) * from[3 + c];
+          low[3 + c] = (1 - g) * s.lower[3 + c];
+          high[3 + c] = (1 - g) * s.upper[3 + c];
+        }
+      }
+      const PolishReport polished = polish([&](const std::vector<double>& x) { return residuals(to_genes(x)); },
+                                           low, high, p.polish_steps, &q);
+      res.polish_evaluations += polished.evaluations;
+      if (polished.fitness < res.best_fitness) {
+        res.best_fitness = polished.fitness;
+        res.polish_steps = polished.steps;
+        best_genes = to_genes(q);
+      }
+    }
+    res.polish_seconds = seconds_since(polish_start);
+  }
+  const double* best = best_genes.data();
   std::copy(best, best + genes, res.best);
-  res.best_fitness = history.best_fitness.back();
   if (p.model == ARCUS_GENETIC_DIPOLE)
     for (int c = 0; c < 3; ++c) res.sigma_s_prime[c] = (1 - best[6]) * best[3 + c];
   job->best_fitness = history.best_fitness;

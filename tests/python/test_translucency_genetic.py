@@ -2,7 +2,8 @@
 inverse genetic`): the cache each individual is rendered through against the renderer;
 an opaque Phong sphere's genes recovered from a render written here in NumPy (eq.
 3.2–3.3, no code shared); Table 5.1's set-up run as the thesis ran it, its best fitness
-never rising; the same seed giving the same history (a determinism test); bad input
+never rising, and with the polish that follows the search, the medium recovered in 4
+of 5 seeds; the same seed giving the same history (a determinism test); bad input
 refused naming it."""
 
 import json
@@ -49,17 +50,34 @@ def test_the_cache_renders_as_the_renderer(target, scene):
 
 
 def test_table_5_1_the_best_fitness_never_rises(target, scene):
-    # §5.1's run: 40 individuals, 50 generations, 0.8 / 0.8 / 0.8, from Table 3.1.  The
-    # issue asks for σ′_s, η and b within 10% in 4 of 5 seeds; measured on this scene
-    # they are not (docs/translucency.md gives the five seeds), so this asserts what
-    # holds: the best never rises and it falls from Table 3.1's 0.83 to below 0.12
-    # (measured 0.05–0.08), with every evaluation counted.
-    found = genetic(target.image, scene, seed=1)
+    # §5.1's run as the thesis ran it (no polish): 40 individuals, 50 generations, 0.8 /
+    # 0.8 / 0.8, from Table 3.1.  The best never rises and falls from Table 3.1's 0.83 to
+    # below 0.12 (measured 0.05–0.08), every evaluation counted; alone it does not reach
+    # the truth (docs/translucency.md gives five seeds).
+    found = genetic(target.image, scene, seed=1, polish_steps=0)
     best = found.history["best_fitness"]
     assert len(best) == 51 and (np.diff(best) <= 0).all()
     assert best[0] > 0.5 and best[-1] < 0.12
     assert found.evaluations == 40 + 50 * 32
+    assert found.polish_steps == 0 and found.fitness == found.search_fitness == best[-1]
     np.testing.assert_allclose(found.sigma_s_prime, (1 - found.best["g"]) * found.best["sigma_s"])
+
+
+def test_table_5_1_recovers_the_medium_in_four_of_five_seeds(target, scene):
+    # Issue 21 §6: σ′_s, η and b within 10% in at least 4 of 5 seeds.  With the default
+    # polish (20 Levenberg–Marquardt steps from the search's best, through the same
+    # cache) every seed lands within 3% here at 48² (1.5% at 64², 0.2% at 128²); the
+    # polish only keeps steps that lower the fitness, so the best still never rises.
+    hits = 0
+    for seed in range(5):
+        found = genetic(target.image, scene, seed=seed)
+        assert found.fitness <= found.search_fitness == found.history["best_fitness"][-1]
+        errors = np.r_[found.sigma_s_prime / TRUE_SIGMA_S_PRIME, found.best["eta"] / TRUTH["eta"],
+                       found.best["b"] / TRUTH["b"]] - 1
+        print("seed", seed, "fitness %.4f (search %.4f)" % (found.fitness, found.search_fitness),
+              "errors %", np.round(100 * errors, 1))
+        hits += bool(np.all(np.abs(errors) < 0.10))
+    assert hits >= 4
 
 
 def test_the_same_seed_gives_the_same_history_determinism(target, scene):
@@ -95,9 +113,9 @@ def test_phong_genes_are_recovered_from_a_numpy_render():
     scene = {"translucent_object": {"mesh": "icosphere"}, "lights": [(d, tuple(e)) for d, e in lights],
              "ortho_height": 2.2, "camera": {"position": (0, 0, 5), "look_at": (0, 0, 0)}}
     # The icosphere's 1280 facets against the sphere leave 2.4% at the true genes.  In
-    # RGB, over 5 seeds, k_s and b come within 10% (measured 4% and 3%) and k_d within
-    # 15% (measured 13%, the blue: the darkest channel).  In YCbCr (the default) the
-    # blue carries 11% of Y and is looser (measured +20%): R, G, k_s and b within 10%.
+    # RGB, over 5 seeds, k_s and b come within 10% and k_d within 15% (the search alone
+    # measured 4%, 3% and 13%, the blue: the darkest channel; with the default polish
+    # 3.1%, 1.5% and 0.2%, in YCbCr too).
     for seed in range(5):
         found = genetic(photo, scene, model="phong", seed=seed, fitness_space="rgb")
         assert found.sigma_s_prime is None
@@ -113,6 +131,7 @@ def test_phong_genes_are_recovered_from_a_numpy_render():
     ({"model": "marble"}, ["model"]),
     ({"population": 1}, ["population"]),
     ({"replacement": 1.5}, ["replacement"]),
+    ({"polish_steps": 1001}, ["polish_steps"]),
     ({"fitness_space": "lab"}, ["fitness_space"]),
     ({"lower": {"eta": 2.5}}, ["lower", "eta"]),
     ({"upper": {"g": 1.0}}, ["upper", "g"]),

@@ -388,6 +388,7 @@ class GeneticParamsStruct(ctypes.Structure):
         ("progress_user", c_void_p),
         ("on_generation", GENERATION_CALLBACK),
         ("generation_user", c_void_p),
+        ("polish_steps", c_uint32),
     ]
 
 
@@ -404,6 +405,10 @@ class GeneticResultStruct(ctypes.Structure):
         ("samples", c_uint64),
         ("cache_seconds", c_double),
         ("search_seconds", c_double),
+        ("search_fitness", c_double),
+        ("polish_steps", c_uint32),
+        ("polish_evaluations", c_uint64),
+        ("polish_seconds", c_double),
     ]
 
 

@@ -48,7 +48,8 @@ class GeneticResult:
     ``sigma_s_prime`` (dipole: (1 − g)σ_s), ``history`` (``best_fitness`` and
     ``mean_fitness`` per generation, ``best_genes`` (generations + 1, genes)),
     ``image`` (the best individual's render, (h, w, 3)), ``evaluations``, ``pixels``,
-    ``samples`` and ``timings`` (seconds: cache, search, total)."""
+    ``samples``, ``search_fitness`` (the search's best before the polish),
+    ``polish_steps`` and ``timings`` (seconds: cache, search, polish, total)."""
     model: str
     best: dict
     best_genes: np.ndarray
@@ -59,6 +60,8 @@ class GeneticResult:
     evaluations: int
     pixels: int
     samples: int
+    search_fitness: float
+    polish_steps: int
     timings: dict
 
 
@@ -141,12 +144,14 @@ def _mesh_path(name, folder):
 
 def genetic(target, scene, model="dipole", population=40, generations=50, seed=0, *, replacement=0.8,
             crossover=0.8, mutation=0.8, mutation_range=0.3, fitness_threshold=0.0, fitness_space="ycbcr",
-            initial=None, lower=None, upper=None, on_generation=None, progress=None, context=None):
+            polish_steps=20, initial=None, lower=None, upper=None, on_generation=None, progress=None,
+            context=None):
     """Searches for the genes of ``model`` ("dipole" or "phong") whose render of
     ``scene`` best matches ``target`` (an HDR file or an (h, w, 3) array of linear
     radiance): a :class:`GeneticResult`.  §5.1's defaults: 40 individuals, 50
     generations, replacement, crossover and mutation probabilities 0.8, mutations of
-    ±0–30%; Table 3.1's initial genes.  ``initial``/``lower``/``upper``: genes by name
+    ±0–30%; Table 3.1's initial genes.  ``polish_steps``: then Levenberg–Marquardt steps
+    from the best individual (not in the thesis; 0: its search alone).  ``initial``/``lower``/``upper``: genes by name
     (``GENES``) or flat; ``fitness_space``: "ycbcr" (the thesis' main text) or "rgb";
     ``on_generation(generation, best_fitness, best_genes_dict)``: after each generation
     (True stops the search)."""
@@ -164,6 +169,7 @@ def genetic(target, scene, model="dipole", population=40, generations=50, seed=0
     params.population = to_int(population, "population", 2, 10000)
     params.generations = to_int(generations, "generations", 0, 100000)
     params.seed = to_int(seed, "seed", 0, 2 ** 64 - 1)
+    params.polish_steps = to_int(polish_steps, "polish_steps", 0, 1000)
     for name, value in (("replacement", replacement), ("crossover", crossover), ("mutation", mutation),
                         ("mutation_range", mutation_range), ("fitness_threshold", fitness_threshold)):
         setattr(params, name, to_float(value, name))
@@ -220,5 +226,7 @@ def genetic(target, scene, model="dipole", population=40, generations=50, seed=0
         model=model, best=_named(model, flat), best_genes=flat, fitness=r.best_fitness,
         sigma_s_prime=np.array(r.sigma_s_prime[:]) if model == "dipole" else None,
         history={"best_fitness": best, "mean_fitness": mean, "best_genes": genes}, image=image,
-        evaluations=r.evaluations, pixels=r.pixels, samples=r.samples,
-        timings={"cache": r.cache_seconds, "search": r.search_seconds, "total": time.perf_counter() - t0})
+        evaluations=r.evaluations, pixels=r.pixels, samples=r.samples, search_fitness=r.search_fitness,
+        polish_steps=r.polish_steps,
+        timings={"cache": r.cache_seconds, "search": r.search_seconds, "polish": r.polish_seconds,
+                 "total": time.perf_counter() - t0})

@@ -33,6 +33,9 @@ def add(sub):
     g.add_argument("--population", type=int, default=40, help="individuals (default 40, §5.1)")
     g.add_argument("--generations", type=int, default=50, help="generations (default 50, §5.1)")
     g.add_argument("--seed", type=int, default=0)
+    g.add_argument("--polish-steps", type=int, default=20,
+                   help="Levenberg–Marquardt steps after the search, from the last population's four best (default 20; 0: the "
+                        "thesis' search alone)")
     g.add_argument("--fitness-space", choices=("ycbcr", "rgb"), default="ycbcr")
     g.add_argument("-o", "--output", action="append", metavar="OUT", help="write the best render (.png .exr ...)")
     g.add_argument("--device", help="an OpenCL device: an index or part of its name")
@@ -66,14 +69,20 @@ def run_genetic(args):
         with Progress("genetic search", quiet=args.quiet) as bar:
             found = inverse.genetic(target, args.scene, model=args.model, population=args.population,
                                     generations=args.generations, seed=args.seed, fitness_space=args.fitness_space,
+                                    polish_steps=args.polish_steps,
                                     on_generation=on_generation, progress=bar if bar.shown else None, context=ctx)
     print("generation  best fitness  best genes (every tenth, as Table 5.1)")
     for row in rows:
         print(row)
+    if found.polish_steps:
+        print("polish: %d Levenberg-Marquardt steps from fitness %.5f to %.5f: %s" % (
+            found.polish_steps, found.search_fitness, found.fitness,
+            "  ".join("%s %s" % (n, " ".join("%.4g" % v for v in np.atleast_1d(x))) for n, x in found.best.items())))
     print("%s: %s model, %d individuals × %d generations, %d evaluations over %d pixels; cache %.1f s, search "
-          "%.1f s, %.1f s in all" % (target.name, args.model, args.population, len(found.history["best_fitness"]) - 1,
-                                     found.evaluations, found.pixels, found.timings["cache"],
-                                     found.timings["search"], time.monotonic() - started))
+          "%.1f s, polish %.1f s, %.1f s in all" % (
+              target.name, args.model, args.population, len(found.history["best_fitness"]) - 1, found.evaluations,
+              found.pixels, found.timings["cache"], found.timings["search"], found.timings["polish"],
+              time.monotonic() - started))
     if found.sigma_s_prime is not None:
         print("sigma_s' = (1 - g) sigma_s: %s (what the image determines; sigma_s and g alone are not)"
               % " ".join("%.4g" % v for v in found.sigma_s_prime))
