@@ -120,8 +120,8 @@ def searches(quick, rows):
             lines.append("| %d | %d | %.2f%% | %.0f%% | %.2f%% | %.1f%% | %.1f%% | %.1f%% | %d | %.1f | %.1f | %.1f |" % (
                 population, count, 100 * r.search_fitness, 100 * sps_search, 100 * r.fitness, 100 * sps,
                 100 * eta, 100 * b, r.evaluations, r.timings["cache"], r.timings["search"], r.timings["polish"]))
-    lines += ["", "One seed each (1); η and b after the polish (20 Levenberg–Marquardt steps from the "
-              "search's best); docs/translucency.md has five seeds of the 40 × 50 run.", ""]
+    lines += ["", "One seed each (1); η and b after the polish (20 Levenberg–Marquardt steps from the last "
+              "population's four best); docs/translucency.md has five seeds of the 40 × 50 run.", ""]
     return lines
 
 
