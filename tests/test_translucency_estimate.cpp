@@ -38,7 +38,9 @@ class TranslucencyEstimate : public ArcusTest {
     EXPECT_EQ(arcus_translucency_render(ctx(), mesh, &d, kLights.size(), kLights.data(), &p, &job), ARCUS_SUCCESS)
         << last_error();
     std::vector<float> rgb(3 * kSide * kSide);
-    if (job) EXPECT_EQ(arcus_job_get_translucency_image(job, rgb.data(), nullptr, nullptr), ARCUS_SUCCESS);
+    if (job) {
+      EXPECT_EQ(arcus_job_get_translucency_image(job, rgb.data(), nullptr, nullptr), ARCUS_SUCCESS);
+    }
     arcus_job_release(job);
     return rgb;
   }
@@ -61,7 +63,9 @@ class TranslucencyEstimate : public ArcusTest {
                                           kLights.data(), &e, &job),
               ARCUS_SUCCESS)
         << last_error();
-    if (job) EXPECT_EQ(arcus_job_get_translucency_estimate(job, &r), ARCUS_SUCCESS);
+    if (job) {
+      EXPECT_EQ(arcus_job_get_translucency_estimate(job, &r), ARCUS_SUCCESS);
+    }
     arcus_job_release(job);
     return r;
   }
@@ -92,7 +96,9 @@ TEST_F(TranslucencyEstimate, RecoversJensensMaterialsFromSyntheticPhotos) {
       std::printf("%s channel %d: R_total %+.2f%%, l_d %+.1f%% (true %.2f mm); condition %.2e, %d QMR steps\n", name,
                   c, 100 * total, 100 * length, want.diffuse_length[c], got.condition_a[c], got.iterations[c]);
       EXPECT_LT(std::fabs(total), 0.03) << name << " channel " << c;
-      if (want.diffuse_length[c] < 10) EXPECT_LT(std::fabs(length), 0.15) << name << " channel " << c;
+      if (want.diffuse_length[c] < 10) {
+        EXPECT_LT(std::fabs(length), 0.15) << name << " channel " << c;
+      }
       EXPECT_TRUE(got.residual[c] < 1e-8) << got.residual[c];
       EXPECT_GT(got.condition_a[c], 1);
     }
