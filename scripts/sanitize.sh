@@ -81,10 +81,11 @@ if reports "$logs/ctest-full.log"; then [ $ctest_rc -ne 0 ] || ctest_rc=1; fi
 # sanitizer writes to fd 2 and exits, which pytest's default fd capture would swallow.
 # The end-to-end tests (the command, the gallery, the docs' examples) repeat in
 # subprocesses library calls the suites already make, at several times their plain cost
-# under the sanitizer: they run in the plain pass only.
+# under the sanitizer: they run in the plain pass only, as do the full-size reproductions
+# of thesis tables (marker full_size: Table 3.3, Table 5.1's five seeds).
 t0=$SECONDS
 LD_PRELOAD="$preload" ASAN_OPTIONS="$asan:detect_leaks=0" ARCUS_LIBRARY="$build/libarcus.so" \
-  python3 -m pytest -v --capture=sys -p no:cacheprovider -m "not end_to_end and not external_reference" tests/python 2>&1 | tee "$logs/pytest.log"
+  python3 -m pytest -v --capture=sys -p no:cacheprovider -m "not end_to_end and not external_reference and not full_size" tests/python 2>&1 | tee "$logs/pytest.log"
 pytest_rc=$?
 pytest_s=$((SECONDS - t0))
 if reports "$logs/pytest.log"; then [ $pytest_rc -ne 0 ] || pytest_rc=1; fi

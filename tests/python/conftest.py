@@ -43,6 +43,8 @@ def pytest_configure(config):
                             "(subprocesses; the sanitizer run skips them, they test no library code of their own)")
     config.addinivalue_line("markers", "external_reference: runs another renderer (Mitsuba 3) as a reference, no "
                             "library code (the sanitizer run skips them: their own libraries are not instrumented)")
+    config.addinivalue_line("markers", "full_size: reproduces a thesis table at its own size (minutes instrumented; "
+                            "the sanitizer run skips them, their library calls run instrumented in smaller tests)")
 
 
 @pytest.fixture(scope="session")

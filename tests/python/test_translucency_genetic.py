@@ -63,6 +63,7 @@ def test_table_5_1_the_best_fitness_never_rises(target, scene):
     np.testing.assert_allclose(found.sigma_s_prime, (1 - found.best["g"]) * found.best["sigma_s"])
 
 
+@pytest.mark.full_size
 def test_table_5_1_recovers_the_medium_in_four_of_five_seeds(target, scene):
     # Issue 21 §6: σ′_s, η and b within 10% in at least 4 of 5 seeds.  With the default
     # polish (20 Levenberg–Marquardt steps from the search's best, through the same

@@ -25,6 +25,7 @@ def showcase():
     return module
 
 
+@pytest.mark.full_size
 def test_table_3_3_is_no_worse_than_the_thesis(showcase):
     rows = showcase.table_3_3(200, rerender=False)
     ours, theirs = [[], []], [[], []]
