@@ -76,6 +76,32 @@ kernel void arcus_translucency_gather_all(ARCUS_PARAMS(ARCUS_TRANSLUCENCY_GATHER
 
 #else
 
+#ifdef ARCUS_USE_DIPOLE
+/* The tree walk holds one point a work-item, which PoCL runs as scalar code: a sample's
+ * six exponentials (three channels, two sources) go as one 8-wide vector here, lanes 0–2
+ * the real sources and 4–6 the virtual ones (3 and 7 idle: z 1, weight 0).  Measured:
+ * docs/translucency.md ("Speed"). */
+#define REAL8 ARCUS_CAT(REAL, 8)
+#define ARCUS_TREE_SETUP                                                                                  \
+  const REAL8 z8 = (REAL8)(channels[0], channels[4], channels[8], RC(1.0), channels[1], channels[5],     \
+                           channels[9], RC(1.0));                                                         \
+  const REAL8 s8 = (REAL8)(channels[2], channels[6], channels[10], RC(0.0), channels[2], channels[6],    \
+                           channels[10], RC(0.0));                                                        \
+  const REAL8 w8 = (REAL8)(channels[3], channels[7], channels[11], RC(0.0), channels[3], channels[7],    \
+                           channels[11], RC(0.0)) * z8
+#define ARCUS_TREE_ADD(acc, r2, p0, p1, p2)                                                              \
+  do {                                                                                                    \
+    const REAL8 d = sqrt((REAL8)(r2) + z8 * z8);                                                          \
+    const REAL8 t = w8 * (RC(1.0) + s8 * d) * exp(-s8 * d) / (d * d * d);                                 \
+    (acc)[0] += (p0) * (t.s0 + t.s4);                                                                     \
+    (acc)[1] += (p1) * (t.s1 + t.s5);                                                                     \
+    (acc)[2] += (p2) * (t.s2 + t.s6);                                                                     \
+  } while (0)
+#else
+#define ARCUS_TREE_SETUP ARCUS_PROFILE_SETUP
+#define ARCUS_TREE_ADD ARCUS_ADD_SAMPLE
+#endif
+
 /* Squared distance from p to the box (0 inside). */
 ARCUS_INLINE REAL box_distance2(__global const bvh_node* n, REAL px, REAL py, REAL pz) {
   const REAL p[3] = {px, py, pz};
@@ -92,7 +118,7 @@ kernel void arcus_translucency_gather_tree(ARCUS_PARAMS(ARCUS_TRANSLUCENCY_GATHE
   const uint item = (uint)get_global_id(0);
   if (item >= count) return;
   const uint point = first + item;
-  ARCUS_PROFILE_SETUP;
+  ARCUS_TREE_SETUP;
   const REAL x = exits[point], y = exits[stride + point], z = exits[2 * (size_t)stride + point];
   REAL acc[3] = {RC(0.0), RC(0.0), RC(0.0)};
   uint visited = 0;
@@ -112,13 +138,13 @@ kernel void arcus_translucency_gather_tree(ARCUS_PARAMS(ARCUS_TRANSLUCENCY_GATHE
     /* Far enough: the whole node as one sample at its centroid, when it is seen under a
      * solid angle area/d² below the bound (Jensen & Buhler 2002). */
     if (box_distance2(n, x, y, z) > RC(0.0) && c[ARCUS_CLUSTER_AREA] < max_solid_angle * r2) {
-      ARCUS_ADD_SAMPLE(acc, r2, p0, p1, p2);
+      ARCUS_TREE_ADD(acc, r2, p0, p1, p2);
     } else if (n->count > 0) {
       for (int s = n->first; s < n->first + n->count; ++s) {
         const REAL ex = x - samples[3 * (size_t)s], ey = y - samples[3 * (size_t)s + 1],
                    ez = z - samples[3 * (size_t)s + 2];
         const REAL q2 = ex * ex + ey * ey + ez * ez;
-        ARCUS_ADD_SAMPLE(acc, q2, powers[3 * (size_t)s], powers[3 * (size_t)s + 1], powers[3 * (size_t)s + 2]);
+        ARCUS_TREE_ADD(acc, q2, powers[3 * (size_t)s], powers[3 * (size_t)s + 1], powers[3 * (size_t)s + 2]);
       }
     } else {
       stack[top++] = n->first;
