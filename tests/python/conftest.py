@@ -41,8 +41,10 @@ def pytest_collection_modifyitems(config, items):
 def pytest_configure(config):
     config.addinivalue_line("markers", "end_to_end: runs the arcus command or the documentation as a user does "
                             "(subprocesses; the sanitizer run skips them, they test no library code of their own)")
-    config.addinivalue_line("markers", "external_reference: runs another renderer (Mitsuba 3) as a reference, no "
-                            "library code (the sanitizer run skips them: their own libraries are not instrumented)")
+    config.addinivalue_line("markers", "external_reference: runs a reference outside the library (Mitsuba 3, the "
+                            "tests' NumPy tracer) and little library code (the sanitizer run skips them)")
+    config.addinivalue_line("markers", "heavy: a physics check of seconds whose library calls the module's smaller "
+                            "tests make too (the sanitizer run skips it: kernels are not instrumented, CI's time is)")
     config.addinivalue_line("markers", "full_size: reproduces a thesis table at its own size (minutes instrumented; "
                             "the sanitizer run skips them, their library calls run instrumented in smaller tests)")
 

@@ -56,6 +56,7 @@ def test_single_scattering_matches_the_closed_form(tmp_path, ctx):
             assert r.spectral[py, px, 0] == pytest.approx(expect, rel=1e-4), (px, py)
 
 
+@pytest.mark.heavy
 def test_the_two_estimates_see_the_same_multiple_scattering(tmp_path, ctx):
     """The per-step k-nearest estimate and the beam estimate gather the same photons'
     density along the same rays: with the multiple scattering alone, their images agree

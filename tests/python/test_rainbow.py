@@ -158,6 +158,7 @@ def test_uniform_caustics_put_the_primary_bow_where_mie_has_it(ctx):
         rainbow.phase_function(rainbow.Sphere(RADIUS), NM, theta, grid=16, caustics="airy", context=ctx)
 
 
+@pytest.mark.heavy
 def test_phi_scalar_and_two_dimensional(ctx, incoherent):
     phis = [0.0, 45.0, 90.0]
     r = rainbow.phase_function(rainbow.Sphere(RADIUS), NM, THETA, phi=phis, grid=GRID, coherent=False, context=ctx)
@@ -582,6 +583,7 @@ def test_flat_meshes_give_glints(ctx, repo):
     assert rainbow.phase_function(rainbow.Mesh(path, scale=1e-3), NM, THETA, grid=64, context=ctx).glints is None
 
 
+@pytest.mark.heavy
 def test_raindrop_tables_stay_finite_where_a_ray_leaves_degenerate(ctx):
     # A 2 mm raindrop under an 8° sun at 380 nm: a few rays of p = 2 leave with a
     # non-finite direction near grazing; their patches must be left out, not turn the

@@ -108,6 +108,7 @@ def test_save_load(serial, tmp_path):
         sweep.PhaseTables.load(tmp_path / "missing.npz")
 
 
+@pytest.mark.heavy
 def test_killed_worker_loses_nothing(tmp_path):
     """A worker SIGKILLed while it runs a task: the scheduler runs that task again
     elsewhere, and the tables come out complete and equal to the serial loop's."""

@@ -49,6 +49,7 @@ def test_the_cache_renders_as_the_renderer(target, scene):
     assert found.fitness < 0.015 and found.pixels == m.sum()
 
 
+@pytest.mark.heavy
 def test_table_5_1_the_best_fitness_never_rises(target, scene):
     # §5.1's run as the thesis ran it (no polish): 40 individuals, 50 generations, 0.8 /
     # 0.8 / 0.8, from Table 3.1.  The best never rises and falls from Table 3.1's 0.83 to

@@ -21,6 +21,9 @@ ETA = 1.3
 PHOTONS = 200_000  # R_total's standard error ~0.0015; each profile bin's below 2%
 PROFILE_EDGES = np.geomspace(2.0, 20.0, 9)  # in units of 1/σ′_t (σ′_t = 1 mm⁻¹ here)
 
+# Every test here runs the NumPy tracer; the library gives only closed forms.
+pytestmark = pytest.mark.external_reference
+
 
 @functools.lru_cache(maxsize=None)
 def traced(sigma_a, sigma_s, g):
@@ -60,7 +63,6 @@ def test_the_dipoles_profile_is_within_15_percent_of_transport(sigma_a):
         assert abs(expected / mc - 1) < 0.15, (lo, hi, expected, mc)
 
 
-@pytest.mark.external_reference
 def test_mitsuba_agrees_with_the_tracer():
     # Mitsuba 3 (installed by scripts/bootstrap.sh --test) on the same medium: 65 536
     # paths a figure (standard error ~0.002), the tracer's ~0.0015, so 0.008 is four

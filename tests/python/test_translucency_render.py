@@ -201,6 +201,7 @@ SPHERE_LIGHTS = [((0.3, 0.5, 1), 1.0), ((-1, 0.2, 0.3), 0.3)]
 SPHERE_VIEW = {"position": (0, 0, 5), "look_at": (0, 0, 0), "width": 120, "height": 120}
 
 
+@pytest.mark.heavy
 def test_an_estimate_recovers_skim_milk_from_its_render(ctx):
     # A 40 mm sphere of skim milk rendered through the dipole and estimated back
     # (tests/test_translucency_estimate.cpp has the 200-pixel version and its bounds):
