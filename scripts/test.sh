@@ -16,8 +16,9 @@ cmake --build build -j2 || exit 1
 (cd build && ctest --output-on-failure)
 ctest_rc=$?
 # Once more in the layout GPUs get (one ray per work-item, no lane groups), which this
-# CPU-only machine would otherwise never run.
-(cd build && ARCUS_LANES=1 ARCUS_GROUPS=1 ctest --output-on-failure -L physics)
+# CPU-only machine would otherwise never run.  Not the estimate's suite: its histogram
+# kernel has no lanes (one row a work-group), and its photos' renders are the render suite's.
+(cd build && ARCUS_LANES=1 ARCUS_GROUPS=1 ctest --output-on-failure -L physics -E '^TranslucencyEstimate\.')
 scalar_rc=$?
 python3 -m pytest -q tests/python
 pytest_rc=$?
