@@ -180,7 +180,10 @@ TEST_F(TranslucencyRender, ProfileScalingKeepsOrScalesTheSlab) {
 // The hierarchical gather at its default bound against every sample, over a sphere of
 // radius 10 mm under two lights, seen whole by a pinhole: RMSE within 1% of the mean
 // radiance (issue 21, §2), for the short-ranged test medium and for marble, whose red
-// diffusion length (8.5 mm) nearly spans the sphere.
+// diffusion length (8.5 mm) nearly spans the sphere.  Also at 0.4 sr, 80× the bound
+// Jensen & Buhler's centroid alone needed here (0.005 sr: at 0.05 sr it was 37% off on a
+// slab): the second-order term over the node's spread keeps it within the 1% (measured
+// 3–4 × 10⁻³; docs/translucency.md's table).
 TEST_F(TranslucencyRender, HierarchicalAgreesWithBruteForce) {
   std::vector<double> v;
   std::vector<uint32_t> t;
@@ -197,6 +200,8 @@ TEST_F(TranslucencyRender, HierarchicalAgreesWithBruteForce) {
     p.gather = ARCUS_GATHER_BRUTE_FORCE;
     const Image brute = render(mesh.mesh, d, lights, p);
     p.gather = ARCUS_GATHER_HIERARCHICAL;
+    for (const double bound : {0.0, 0.4}) {  // 0: the default
+    p.max_solid_angle = bound;
     const Image tree = render(mesh.mesh, d, lights, p);
     EXPECT_EQ(tree.features, ARCUS_FEATURE_TRANSLUCENCY_DIPOLE | ARCUS_FEATURE_TRANSLUCENCY_HIERARCHICAL);
     ASSERT_EQ(brute.covered, tree.covered);
@@ -212,12 +217,13 @@ TEST_F(TranslucencyRender, HierarchicalAgreesWithBruteForce) {
           ++n;
         }
     const double rmse = std::sqrt(sum2 / double(n)), relative = rmse / (mean / double(n));
-    std::printf("samples %llu, nodes %llu, %.1f visits a pixel; relative RMSE %.2e; gather %.3f s vs %.3f s\n",
-                (unsigned long long)tree.stats.samples, (unsigned long long)tree.stats.tree_nodes,
+    std::printf("bound %g sr: samples %llu, nodes %llu, %.1f visits a pixel; relative RMSE %.2e; gather %.3f s vs "
+                "%.3f s\n", bound, (unsigned long long)tree.stats.samples, (unsigned long long)tree.stats.tree_nodes,
                 tree.stats.mean_visits, relative, tree.stats.gather_seconds, brute.stats.gather_seconds);
-    EXPECT_LT(relative, 0.01);
+    EXPECT_LT(relative, 0.01) << "bound " << bound;
     EXPECT_GT(tree.stats.mean_visits, 1.0);
     EXPECT_LT(tree.stats.mean_visits, double(tree.stats.tree_nodes));
+    }
   }
 }
 
@@ -375,7 +381,7 @@ TEST_F(TranslucencyRender, BadInputIsRefusedNamingIt) {
   attempt(good, kOverhead, with([](auto& p) { p.profile_scale = INFINITY; }), "params->profile_scale");
   attempt(good, kOverhead, with([](auto& p) { p.profile_scaling = -1; }), "params->profile_scaling");
   attempt(good, kOverhead, with([](auto& p) { p.gather = 7; }), "params->gather");
-  attempt(good, kOverhead, with([](auto& p) { p.max_solid_angle = 0; }), "params->max_solid_angle");
+  attempt(good, kOverhead, with([](auto& p) { p.max_solid_angle = -0.01; }), "params->max_solid_angle");
   attempt(good, kOverhead, with([](auto& p) { p.highlight_deg = 90; }), "params->highlight_deg");
   // Samples beyond 2^22 are refused before they are made, naming the spacing.
   attempt(good, kOverhead, with([](auto& p) { p.sample_spacing_mm = 1e-4; }), "params->sample_spacing_mm");

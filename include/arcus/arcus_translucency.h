@@ -133,8 +133,9 @@ typedef struct arcus_translucency_render_params {
   double sample_spacing_mm;  /* the samples' spacing; 0: the smallest channel's mean free
                                 path 1/σ′_t, coarsened if the samples would exceed 2^22      */
   int32_t gather;            /* arcus_gather                                               */
-  double max_solid_angle;    /* hierarchical: a node seen under less (area/d², sr) counts as
-                                one sample; 0.005 by default                               */
+  double max_solid_angle;    /* hierarchical: a node seen under less (its area, and 6× its
+                                samples' variance, over d²; sr) is taken whole; 0 (the
+                                default): 0.1 for the dipole, 0.005 for a table             */
   double highlight_deg;      /* the Phong highlight's angle b, degrees (eq. 3.3: exponent
                                 −ln 2/ln cos b; reflectance F_r(η)); 0: no highlight       */
   arcus_progress_callback progress; /* called after each slice of pixels; may be NULL       */

@@ -97,9 +97,27 @@ kernel void arcus_translucency_gather_all(ARCUS_PARAMS(ARCUS_TRANSLUCENCY_GATHER
     (acc)[1] += (p1) * (t.s1 + t.s5);                                                                     \
     (acc)[2] += (p2) * (t.s2 + t.s6);                                                                     \
   } while (0)
+/* A node taken whole: R_d's Taylor expansion in the sample's position y about the
+ * centroid c to second order, averaged over the node's samples (covariance Σ, mean c):
+ * R(u) + R′(u)·tr Σ + 2R″(u)·aᵀΣa, with u = |a|², a = x − c and, per source (s = σ_tr d,
+ * d = √(u + z²)), R = C(1 + s), R′ = −C(s² + 3s + 3)/(2d²), R″ = C(s³ + 6s² + 15s + 15)/(4d⁴),
+ * C = w z e^{−s}/d³.  The first-order term vanishes about the mean; what is left is third
+ * order in the node's size over its distance (docs/translucency.md). */
+#define ARCUS_TREE_ADD_NODE(acc, u, trace, quad, p0, p1, p2)                                             \
+  do {                                                                                                    \
+    const REAL8 d2 = (REAL8)(u) + z8 * z8, d = sqrt(d2), s = s8 * d;                                      \
+    const REAL8 c = w8 * exp(-s) / (d2 * d);                                                              \
+    const REAL8 t = c * (RC(1.0) + s - (REAL8)(trace) * (s * s + RC(3.0) * s + RC(3.0)) / (RC(2.0) * d2) + \
+                         (REAL8)(quad) * (((s + RC(6.0)) * s + RC(15.0)) * s + RC(15.0)) / (RC(2.0) * d2 * d2)); \
+    (acc)[0] += (p0) * (t.s0 + t.s4);                                                                     \
+    (acc)[1] += (p1) * (t.s1 + t.s5);                                                                     \
+    (acc)[2] += (p2) * (t.s2 + t.s6);                                                                     \
+  } while (0)
 #else
 #define ARCUS_TREE_SETUP ARCUS_PROFILE_SETUP
 #define ARCUS_TREE_ADD ARCUS_ADD_SAMPLE
+/* A table has no derivatives here: a node is one sample at its centroid. */
+#define ARCUS_TREE_ADD_NODE(acc, u, trace, quad, p0, p1, p2) ARCUS_ADD_SAMPLE(acc, u, p0, p1, p2)
 #endif
 
 /* Squared distance from p to the box (0 inside). */
@@ -137,8 +155,12 @@ kernel void arcus_translucency_gather_tree(ARCUS_PARAMS(ARCUS_TRANSLUCENCY_GATHE
     const REAL r2 = dx * dx + dy * dy + dz * dz;
     /* Far enough: the whole node as one sample at its centroid, when it is seen under a
      * solid angle area/d² below the bound (Jensen & Buhler 2002). */
-    if (box_distance2(n, x, y, z) > RC(0.0) && c[ARCUS_CLUSTER_AREA] < max_solid_angle * r2) {
-      ARCUS_TREE_ADD(acc, r2, p0, p1, p2);
+    __global const REAL* v = c + ARCUS_CLUSTER_SPREAD; /* xx, yy, zz, xy, xz, yz */
+    const REAL trace = v[0] + v[1] + v[2];
+    if (box_distance2(n, x, y, z) > RC(0.0) && fmax(c[ARCUS_CLUSTER_AREA], RC(6.0) * trace) < max_solid_angle * r2) {
+      const REAL quad = dx * dx * v[0] + dy * dy * v[1] + dz * dz * v[2] +
+                        RC(2.0) * (dx * dy * v[3] + dx * dz * v[4] + dy * dz * v[5]);
+      ARCUS_TREE_ADD_NODE(acc, r2, trace, quad, p0, p1, p2);
     } else if (n->count > 0) {
       for (int s = n->first; s < n->first + n->count; ++s) {
         const REAL ex = x - samples[3 * (size_t)s], ey = y - samples[3 * (size_t)s + 1],

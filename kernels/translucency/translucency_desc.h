@@ -16,16 +16,19 @@
  * The hierarchical kernel (ARCUS_USE_HIERARCHICAL; Jensen & Buhler 2002) walks a BVH
  * over the samples (bvh/bvh_desc.h's layout; samples stored in leaf order) whose nodes
  * carry CLUSTER_SIZE REALs each in `clusters`: the node's summed powers, its centroid
- * (weighted by the summed power of the three channels) and its area.  A node seen
- * under a solid angle area/d² below `max_solid_angle` from a point outside its box
- * counts as one sample at its centroid. */
+ * (weighted by the summed power of the three channels), its area and the covariance of
+ * its samples.  A node seen under a solid angle area/d² below `max_solid_angle` from a
+ * point outside its box counts as one sample at its centroid; the dipole adds the
+ * second-order term of R_d's Taylor expansion about the centroid over that covariance. */
 #ifndef ARCUS_TRANSLUCENCY_DESC_H
 #define ARCUS_TRANSLUCENCY_DESC_H
 
 #define ARCUS_CLUSTER_POWER 0    /* 3: Σ E·ΔA per channel                 */
 #define ARCUS_CLUSTER_CENTROID 3 /* 3: the power-weighted mean position    */
 #define ARCUS_CLUSTER_AREA 6     /* Σ ΔA [mm²]                              */
-#define ARCUS_CLUSTER_SIZE 8
+#define ARCUS_CLUSTER_SPREAD 8   /* 6: the samples' covariance about the centroid, same
+                                    weights [mm²]: xx, yy, zz, xy, xz, yz     */
+#define ARCUS_CLUSTER_SIZE 14
 
 #define ARCUS_TRANSLUCENCY_GATHER_ALL_ARGS(X)                                                   \
   X(__global const REAL*, exits) X(__global const REAL*, samples) X(__global const REAL*, powers) \

@@ -188,7 +188,7 @@ arcus_status arcus_translucency_render_params_init(arcus_translucency_render_par
     p.profile_scale = 1;
     p.profile_scaling = ARCUS_PROFILE_SCALE_ENERGY;
     p.gather = ARCUS_GATHER_HIERARCHICAL;
-    p.max_solid_angle = kDefaultSolidAngle;
+    p.max_solid_angle = 0;  // automatic: render.h
     p.highlight_deg = 10;
     *params = p;
   });

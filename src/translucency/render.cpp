@@ -52,8 +52,8 @@ void check_params(const arcus_translucency_render_params& p) {
   require(p.gather == ARCUS_GATHER_HIERARCHICAL || p.gather == ARCUS_GATHER_BRUTE_FORCE,
           "params->gather = " + std::to_string(p.gather) +
               " is not ARCUS_GATHER_HIERARCHICAL (0) or ARCUS_GATHER_BRUTE_FORCE (1)");
-  require(std::isfinite(p.max_solid_angle) && p.max_solid_angle > 0 && p.max_solid_angle <= 4 * M_PI,
-          "params->max_solid_angle = " + number(p.max_solid_angle) + " is not a solid angle in (0, 4π] sr");
+  require(std::isfinite(p.max_solid_angle) && p.max_solid_angle >= 0 && p.max_solid_angle <= 4 * M_PI,
+          "params->max_solid_angle = " + number(p.max_solid_angle) + " is not 0 (automatic) or a solid angle in (0, 4π] sr");
   require(std::isfinite(p.highlight_deg) && p.highlight_deg >= 0 && p.highlight_deg < 90,
           "params->highlight_deg = " + number(p.highlight_deg) + " is not an angle in [0, 90) degrees");
 }
@@ -151,19 +151,23 @@ Tree build_tree(std::vector<double>* positions, std::vector<double>* powers, con
   *positions = std::move(pos);
   *powers = std::move(pow);
   Tree t{flat.nodes, std::vector<double>(flat.nodes.size() * ARCUS_CLUSTER_SIZE, 0.0)};
-  // A node's sums: power per channel, Σ w·x with w the power of all channels, Σ ΔA·x.
+  // A node's sums: power per channel, Σ w·x and Σ w·x_a·x_b (xx, yy, zz, xy, xz, yz) with
+  // w the power of all channels, Σ ΔA·x.
   struct Sums {
-    double power[3] = {0, 0, 0}, weighted[3] = {0, 0, 0}, by_area[3] = {0, 0, 0}, weight = 0, area = 0;
+    double power[3] = {0, 0, 0}, weighted[3] = {0, 0, 0}, by_area[3] = {0, 0, 0}, second[6] = {0, 0, 0, 0, 0, 0},
+           weight = 0, area = 0;
     void add(const Sums& o) {
       for (int k = 0; k < 3; ++k) {
         power[k] += o.power[k];
         weighted[k] += o.weighted[k];
         by_area[k] += o.by_area[k];
       }
+      for (int k = 0; k < 6; ++k) second[k] += o.second[k];
       weight += o.weight;
       area += o.area;
     }
   };
+  static constexpr int kPairA[6] = {0, 1, 2, 0, 0, 1}, kPairB[6] = {0, 1, 2, 1, 2, 2};
   const std::vector<double>& p = *positions;
   const std::vector<double>& e = *powers;
   std::function<Sums(int)> sum = [&](int at) {
@@ -179,6 +183,8 @@ Tree build_tree(std::vector<double>* positions, std::vector<double>* powers, con
           one.weighted[k] = one.weight * p[3 * size_t(s) + k];
           one.by_area[k] = one.area * p[3 * size_t(s) + k];
         }
+        for (int k = 0; k < 6; ++k)
+          one.second[k] = one.weight * p[3 * size_t(s) + kPairA[k]] * p[3 * size_t(s) + kPairB[k]];
         total.add(one);
       }
     } else if (node.first >= 0) {
@@ -194,6 +200,11 @@ Tree build_tree(std::vector<double>* positions, std::vector<double>* powers, con
                                                        : 0;
     }
     c[ARCUS_CLUSTER_AREA] = total.area;
+    if (total.weight > 0)  // unlit nodes add nothing: no spread needed
+      for (int k = 0; k < 6; ++k) {
+        const double* mean = &c[ARCUS_CLUSTER_CENTROID];
+        c[ARCUS_CLUSTER_SPREAD + k] = total.second[k] / total.weight - mean[kPairA[k]] * mean[kPairB[k]];
+      }
     return total;
   };
   sum(0);
@@ -255,7 +266,9 @@ std::vector<double> gather(arcus_context_t* ctx, RenderJob& job, const std::vect
     bind_inputs(launch, TreeArg{});
     launch.upload(TreeArg::nodes, t.nodes, "the samples' BVH");
     launch.upload(TreeArg::clusters, t.clusters, "the BVH's clusters");
-    launch.bind_value(TreeArg::max_solid_angle, p.max_solid_angle);
+    launch.bind_value(TreeArg::max_solid_angle, p.max_solid_angle > 0     ? p.max_solid_angle
+                                                : table_size > 0 ? kDefaultSolidAngleTable
+                                                                 : kDefaultSolidAngleDipole);
     launch.bind(TreeArg::visits, &visits);
     slices.total = count;
     slices.first_units = 256;

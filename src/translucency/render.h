@@ -25,8 +25,12 @@ struct RenderJob : arcus_job_s {
 // The most irradiance samples a render takes (~200 MB of host arrays).
 constexpr uint64_t kMaxSamples = uint64_t(1) << 22;
 
-// Hierarchical gather: the solid angle (sr) under which a node counts as one sample.
-constexpr double kDefaultSolidAngle = 0.005;
+// Hierarchical gather: the bound (sr) under which a node counts as one sample, when the
+// caller gives 0.  The dipole takes a node with its second-order Taylor term (gather.cl),
+// a table as one sample at its centroid, hence the wider bound for the dipole: both keep
+// the relative RMSE against brute force near 2e-4 or below (docs/translucency.md).
+constexpr double kDefaultSolidAngleDipole = 0.1;
+constexpr double kDefaultSolidAngleTable = 0.005;
 
 // What R_d is: the dipole or a table (checked by the caller, api.cpp), one of them.
 struct ProfileSource {

@@ -369,7 +369,8 @@ def render(dipole, mesh, lights, camera=None, *, ortho_height=0.0, mm_per_unit=1
     (divided by 1 − 2·FM1, energy-conserving); ``profile_scale``/``profile_scaling``
     stretch the profile (§5.2); ``sample_spacing_mm`` (0: 1/σ′_t) spaces the irradiance
     samples; ``gather``: "hierarchical" (Jensen & Buhler 2002, nodes under
-    ``max_solid_angle`` sr taken whole) or "brute_force" (the reference);
+    ``max_solid_angle`` sr taken whole; default 0.1 for a dipole, 0.005 for a table)
+    or "brute_force" (the reference);
     ``highlight_deg``: the Phong highlight's angle b (0: none).  ``out``: a path or
     paths to write the image to, in the format each extension names: .exr and .hdr keep
     the radiance, .png and .jpg are scaled by ``exposure`` (default: the 99.5th
