@@ -1,7 +1,9 @@
 #include "translucency/inverse.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include "core/error.h"
@@ -112,6 +114,47 @@ std::vector<double> image_of(const AppearanceCache& cache, int32_t model, const 
   return dipole_image(cache, d, genes[8]);
 }
 
+// Levenberg–Marquardt (genetic.h's polish) from each of the last population's best
+// kPolishStarts distinct individuals (the valley has more than one low point: from one
+// start a channel can slide to its dense end, a short ℓ_d against σ′_s's bound); the best
+// result replaces *best_genes when it beats res->best_fitness.  The dipole is polished in
+// what the image determines: σ_a, σ′_s, η, b, with g held at the individual's (σ_s and g
+// alone only move σ′_s: free, the pair would drift along that direction into σ_s's
+// bound).  Phong's genes are all seen.
+void polish_best(const std::vector<std::vector<double>>& last, const GeneticSettings& s, bool dipole, uint32_t steps,
+                 const std::function<std::vector<double>(const std::vector<double>&)>& residuals,
+                 arcus_genetic_result* res, std::vector<double>* best_genes) {
+  constexpr size_t kPolishStarts = 4;
+  const auto polish_start = std::chrono::steady_clock::now();
+  std::vector<std::vector<double>> starts;
+  for (const std::vector<double>& genes_of : last)
+    if (starts.size() < kPolishStarts && std::find(starts.begin(), starts.end(), genes_of) == starts.end())
+      starts.push_back(genes_of);
+  for (const std::vector<double>& from : starts) {
+    // The dipole's polish variables: σ_a (3), σ′_s = (1 − g)σ_s (3), η, b.
+    const double g = dipole ? from[6] : 0;
+    auto to_genes = [&](const std::vector<double>& q) {
+      if (!dipole) return q;
+      return std::vector<double>{q[0], q[1], q[2], q[3] / (1 - g), q[4] / (1 - g), q[5] / (1 - g), g, q[6], q[7]};
+    };
+    auto to_polish = [&](const std::vector<double>& genes) {
+      if (!dipole) return genes;
+      return std::vector<double>{genes[0],           genes[1],           genes[2], (1 - g) * genes[3],
+                                 (1 - g) * genes[4], (1 - g) * genes[5], genes[7], genes[8]};
+    };
+    std::vector<double> q = to_polish(from);
+    const PolishReport polished = polish([&](const std::vector<double>& x) { return residuals(to_genes(x)); },
+                                         to_polish(s.lower), to_polish(s.upper), steps, &q);
+    res->polish_evaluations += polished.evaluations;
+    if (polished.fitness < res->best_fitness) {
+      res->best_fitness = polished.fitness;
+      res->polish_steps = polished.steps;
+      *best_genes = to_genes(q);
+    }
+  }
+  res->polish_seconds = seconds_since(polish_start);
+}
+
 }  // namespace
 
 uint32_t gene_count(int32_t model) { return model == ARCUS_GENETIC_PHONG ? 5 : 9; }
@@ -214,48 +257,8 @@ std::unique_ptr<GeneticJob> genetic_inverse(arcus_context_t* ctx, const geometry
   res.evaluations = history.evaluations;
   std::vector<double> best_genes(history.best_genes.end() - genes, history.best_genes.end());
   res.search_fitness = res.best_fitness = history.best_fitness.back();
-  if (p.polish_steps > 0 && !*cancelled) {
-    // From each of the last population's best kPolishStarts distinct individuals (the
-    // valley has more than one low point: from one start a channel can slide to its
-    // dense end, a short ℓ_d against σ′_s's bound), the best polish kept.  The dipole is
-    // polished in what the image determines: σ_a, σ′_s, η, b, with g held at the
-    // individual's (σ_s and g alone only move σ′_s: free, the pair would drift along
-    // that direction into σ_s's bound).  Phong's genes are all seen.
-    constexpr size_t kPolishStarts = 4;
-    const auto polish_start = std::chrono::steady_clock::now();
-    const bool dipole = p.model == ARCUS_GENETIC_DIPOLE;
-    std::vector<std::vector<double>> starts;
-    for (const std::vector<double>& genes_of : history.last)
-      if (starts.size() < kPolishStarts && std::find(starts.begin(), starts.end(), genes_of) == starts.end())
-        starts.push_back(genes_of);
-    for (const std::vector<double>& from : starts) {
-      const double g = dipole ? from[6] : 0;
-      auto to_genes = [&](const std::vector<double>& q) {
-        if (!dipole) return q;
-        return std::vector<double>{q[0], q[1], q[2], q[3] / (1 - g), q[4] / (1 - g), q[5] / (1 - g), g, q[6], q[7]};
-      };
-      std::vector<double> q = from, low = s.lower, high = s.upper;
-      if (dipole) {
-        q = {from[0], from[1], from[2], 0, 0, 0, from[7], from[8]};
-        low = {s.lower[0], s.lower[1], s.lower[2], 0, 0, 0, s.lower[7], s.lower[8]};
-        high = {s.upper[0], s.upper[1], s.upper[2], 0, 0, 0, s.upper[7], s.upper[8]};
-        for (int c = 0; c < 3; ++c) {
-          q[3 + c] = (1 - g) * from[3 + c];
-          low[3 + c] = (1 - g) * s.lower[3 + c];
-          high[3 + c] = (1 - g) * s.upper[3 + c];
-        }
-      }
-      const PolishReport polished = polish([&](const std::vector<double>& x) { return residuals(to_genes(x)); },
-                                           low, high, p.polish_steps, &q);
-      res.polish_evaluations += polished.evaluations;
-      if (polished.fitness < res.best_fitness) {
-        res.best_fitness = polished.fitness;
-        res.polish_steps = polished.steps;
-        best_genes = to_genes(q);
-      }
-    }
-    res.polish_seconds = seconds_since(polish_start);
-  }
+  if (p.polish_steps > 0 && !*cancelled)
+    polish_best(history.last, s, p.model == ARCUS_GENETIC_DIPOLE, p.polish_steps, residuals, &res, &best_genes);
   const double* best = best_genes.data();
   std::copy(best, best + genes, res.best);
   if (p.model == ARCUS_GENETIC_DIPOLE)
