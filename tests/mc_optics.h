@@ -1,0 +1,40 @@
+// Vectors, the Fresnel equations and Snell's law for the tests' Monte Carlo tracers
+// (sphere_mc.h, box_mc.h): written for the tests, sharing no code with arcus.
+#ifndef ARCUS_TESTS_MC_OPTICS_H
+#define ARCUS_TESTS_MC_OPTICS_H
+
+#include <cmath>
+
+namespace mc_optics {
+
+struct V3 {
+  double x, y, z;
+};
+inline V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline V3 operator*(double s, V3 a) { return {s * a.x, s * a.y, s * a.z}; }
+inline double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+inline V3 unit(V3 a) { return (1 / std::sqrt(dot(a, a))) * a; }
+
+// Unpolarised Fresnel reflectance from index n1 onto n2 at incidence cosine cos_i.
+inline double fresnel(double cos_i, double n1, double n2) {
+  const double sin_t2 = (n1 / n2) * (n1 / n2) * (1 - cos_i * cos_i);
+  if (sin_t2 >= 1) return 1;
+  const double cos_t = std::sqrt(1 - sin_t2);
+  const double rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
+  const double rp = (n2 * cos_i - n1 * cos_t) / (n2 * cos_i + n1 * cos_t);
+  return 0.5 * (rs * rs + rp * rp);
+}
+
+// Snell: `d` (unit) crossing a boundary of normal `n` (unit, d·n > 0 is the side it goes
+// to) from index n1 to n2, when it is not totally reflected.
+inline V3 refract(V3 d, V3 n, double n1, double n2) {
+  const double r = n1 / n2, cos_i = dot(d, n);
+  const double cos_t = std::sqrt(1 - r * r * (1 - cos_i * cos_i));
+  return r * d + (cos_t - r * cos_i) * n;
+}
+
+}  // namespace mc_optics
+
+#endif
