@@ -1,6 +1,6 @@
 // An independent Monte Carlo photograph of a translucent box, written for the tests and
 // sharing no code with arcus (sphere_mc.h is its sibling for a sphere; both take their
-// optics from mc_optics.h).
+// optics from mc_common.h).
 //
 // An axis-aligned box of a homogeneous medium with index eta under a smooth dielectric
 // boundary, lit by directional lights and seen by an orthographic camera from any
@@ -32,11 +32,11 @@
 #include <thread>
 #include <vector>
 
-#include "mc_optics.h"
+#include "mc_common.h"
 
 namespace box_mc {
 
-using namespace mc_optics;
+using namespace mc_common;
 
 struct Medium {
   double sigma_a, sigma_s, eta;  // mm⁻¹, mm⁻¹ (isotropic: the reduced σ_s′), index
@@ -185,26 +185,18 @@ inline std::vector<double> photo(const Medium& medium, const double lo[3], const
                                  const std::vector<Light>& lights, const Camera& camera, uint64_t photons,
                                  uint64_t seed, int threads) {
   const Tracer tracer(medium, lo, hi, camera);
-  std::vector<std::vector<double>> parts(threads, std::vector<double>(static_cast<size_t>(camera.side) * camera.side));
-  std::vector<std::thread> workers;
-  for (int k = 0; k < threads; ++k)
-    workers.emplace_back([&, k] {
-      std::mt19937_64 rng(seed * 1000003 + k);
-      for (const Light& light : lights) {
-        const V3 to_light = unit(light.toward);
-        for (uint64_t p = k; p < photons; p += threads) {
-          int face = 0;
-          double projected = 0;
-          const V3 x = tracer.entry(to_light, rng, &face, &projected);
-          tracer.photon(x, face, to_light, light.irradiance * projected / photons, rng, &parts[k]);
-        }
-      }
-    });
-  for (auto& t : workers) t.join();
-  std::vector<double> image(parts[0].size(), 0.0);
-  for (const auto& part : parts)
-    for (size_t i = 0; i < image.size(); ++i) image[i] += part[i];
-  return image;
+  return threaded_photo(static_cast<size_t>(camera.side) * camera.side, seed, threads,
+                        [&](int k, std::mt19937_64& rng, std::vector<double>* image) {
+                          for (const Light& light : lights) {
+                            const V3 to_light = unit(light.toward);
+                            for (uint64_t p = k; p < photons; p += threads) {
+                              int face = 0;
+                              double projected = 0;
+                              const V3 x = tracer.entry(to_light, rng, &face, &projected);
+                              tracer.photon(x, face, to_light, light.irradiance * projected / photons, rng, image);
+                            }
+                          }
+                        });
 }
 
 }  // namespace box_mc

@@ -34,11 +34,11 @@
 #include <thread>
 #include <vector>
 
-#include "mc_optics.h"
+#include "mc_common.h"
 
 namespace sphere_mc {
 
-using namespace mc_optics;
+using namespace mc_common;
 
 struct Medium {
   double sigma_a, sigma_s, eta;  // mm⁻¹, mm⁻¹ (isotropic: the reduced σ_s′), index
@@ -180,22 +180,14 @@ class Tracer {
 inline std::vector<double> photo(const Medium& medium, const std::vector<Light>& lights, const View& view,
                                  uint64_t photons, uint64_t seed, int threads) {
   const Tracer tracer(medium, view);
-  std::vector<std::vector<double>> parts(threads, std::vector<double>(static_cast<size_t>(view.side) * view.side));
-  std::vector<std::thread> workers;
-  for (int k = 0; k < threads; ++k)
-    workers.emplace_back([&, k] {
-      std::mt19937_64 rng(seed * 1000003 + k);
-      for (const Light& light : lights) {
-        const V3 to_light = unit({light.direction[0], light.direction[1], light.direction[2]});
-        const double flux = light.irradiance * M_PI * view.radius_mm * view.radius_mm / photons;
-        for (uint64_t p = k; p < photons; p += threads) tracer.photon(to_light, flux, rng, &parts[k]);
-      }
-    });
-  for (auto& t : workers) t.join();
-  std::vector<double> image(parts[0].size(), 0.0);
-  for (const auto& part : parts)
-    for (size_t i = 0; i < image.size(); ++i) image[i] += part[i];
-  return image;
+  return threaded_photo(static_cast<size_t>(view.side) * view.side, seed, threads,
+                        [&](int k, std::mt19937_64& rng, std::vector<double>* image) {
+                          for (const Light& light : lights) {
+                            const V3 to_light = unit({light.direction[0], light.direction[1], light.direction[2]});
+                            const double flux = light.irradiance * M_PI * view.radius_mm * view.radius_mm / photons;
+                            for (uint64_t p = k; p < photons; p += threads) tracer.photon(to_light, flux, rng, image);
+                          }
+                        });
 }
 
 }  // namespace sphere_mc

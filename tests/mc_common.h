@@ -1,11 +1,16 @@
-// Vectors, the Fresnel equations and Snell's law for the tests' Monte Carlo tracers
-// (sphere_mc.h, box_mc.h): written for the tests, sharing no code with arcus.
-#ifndef ARCUS_TESTS_MC_OPTICS_H
-#define ARCUS_TESTS_MC_OPTICS_H
+// What the tests' Monte Carlo tracers (sphere_mc.h, box_mc.h) share: vectors, the Fresnel
+// equations, Snell's law and the threaded photo loop.  Written for the tests, sharing no
+// code with arcus.
+#ifndef ARCUS_TESTS_MC_COMMON_H
+#define ARCUS_TESTS_MC_COMMON_H
 
 #include <cmath>
+#include <cstdint>
+#include <random>
+#include <thread>
+#include <vector>
 
-namespace mc_optics {
+namespace mc_common {
 
 struct V3 {
   double x, y, z;
@@ -35,6 +40,25 @@ inline V3 refract(V3 d, V3 n, double n1, double n2) {
   return r * d + (cos_t - r * cos_i) * n;
 }
 
-}  // namespace mc_optics
+// A photo of `pixels` values summed over `threads` streams: trace(k, rng, image) traces
+// stream k's photons into its own image with its own generator, seeded from `seed` (the
+// same arguments give the same image).
+template <class Trace>
+std::vector<double> threaded_photo(size_t pixels, uint64_t seed, int threads, const Trace& trace) {
+  std::vector<std::vector<double>> parts(threads, std::vector<double>(pixels, 0.0));
+  std::vector<std::thread> workers;
+  for (int k = 0; k < threads; ++k)
+    workers.emplace_back([&, k] {
+      std::mt19937_64 rng(seed * 1000003 + k);
+      trace(k, rng, &parts[k]);
+    });
+  for (auto& t : workers) t.join();
+  std::vector<double> image(pixels, 0.0);
+  for (const auto& part : parts)
+    for (size_t i = 0; i < pixels; ++i) image[i] += part[i];
+  return image;
+}
+
+}  // namespace mc_common
 
 #endif
