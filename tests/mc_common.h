@@ -40,6 +40,19 @@ inline V3 refract(V3 d, V3 n, double n1, double n2) {
   return r * d + (cos_t - r * cos_i) * n;
 }
 
+// After a scattering: an isotropic new direction, then Russian roulette on a weight fallen
+// below 10⁻⁴ of the photon's flux (unbiased; ends long walks).  False: the photon ends.
+inline bool scatter(std::mt19937_64& rng, double flux, V3* d, double* w) {
+  std::uniform_real_distribution<double> uniform(0, 1);
+  const double cz = 1 - 2 * uniform(rng), phi = 2 * M_PI * uniform(rng), sz = std::sqrt(1 - cz * cz);
+  *d = {sz * std::cos(phi), sz * std::sin(phi), cz};
+  if (*w < 1e-4 * flux) {
+    if (uniform(rng) > 0.1) return false;
+    *w *= 10;
+  }
+  return true;
+}
+
 // A photo of `pixels` values summed over `threads` streams: trace(k, rng, image) traces
 // stream k's photons into its own image with its own generator, seeded from `seed` (the
 // same arguments give the same image).

@@ -152,12 +152,7 @@ class Tracer {
         x = x + free_path * d;
         w *= albedo;
         next_event(x, w, image);
-        const double cz = 1 - 2 * uniform(rng), phi = 2 * M_PI * uniform(rng), sz = std::sqrt(1 - cz * cz);
-        d = {sz * std::cos(phi), sz * std::sin(phi), cz};
-        if (w < 1e-4 * flux) {  // Russian roulette: unbiased, ends long walks
-          if (uniform(rng) > 0.1) return 0;
-          w *= 10;
-        }
+        if (!scatter(rng, flux, &d, &w)) return 0;
       } else {
         n = unit(x + boundary * d);
         x = R * n;
