@@ -153,8 +153,9 @@ kernel void arcus_translucency_gather_tree(ARCUS_PARAMS(ARCUS_TRANSLUCENCY_GATHE
     const REAL dx = x - c[ARCUS_CLUSTER_CENTROID], dy = y - c[ARCUS_CLUSTER_CENTROID + 1],
                dz = z - c[ARCUS_CLUSTER_CENTROID + 2];
     const REAL r2 = dx * dx + dy * dy + dz * dz;
-    /* Far enough: the whole node as one sample at its centroid, when it is seen under a
-     * solid angle area/d² below the bound (Jensen & Buhler 2002). */
+    /* Far enough: the node taken whole (ARCUS_TREE_ADD_NODE) when, from outside its box,
+     * both its area and 6× its samples' variance (a compact node's area; a long thin one's
+     * extent) over d² are below the bound (Jensen & Buhler 2002 test the area alone). */
     __global const REAL* v = c + ARCUS_CLUSTER_SPREAD; /* xx, yy, zz, xy, xz, yz */
     const REAL trace = v[0] + v[1] + v[2];
     if (box_distance2(n, x, y, z) > RC(0.0) && fmax(c[ARCUS_CLUSTER_AREA], RC(6.0) * trace) < max_solid_angle * r2) {
