@@ -286,6 +286,9 @@ typedef struct arcus_translucency_estimate_result {
                                     stands for the sources (docs/translucency.md)           */
   double image_error[3];         /* Σ|A x − b| / Σ b: the solve's re-render of the equation
                                     pixels against them (Table 3.2's "error")              */
+  double refined_radius_mm;      /* from ρ to this, the front sources are counted by their
+                                    sub-pixels (arcus_job_get_translucency_sub_sources)    */
+  uint32_t sub_source_count;     /* how many sub-pixel points                               */
 } arcus_translucency_estimate_result;
 
 ARCUS_API arcus_status arcus_job_get_translucency_estimate(arcus_job_t* job,
@@ -312,6 +315,11 @@ ARCUS_API arcus_status arcus_job_get_translucency_system(arcus_job_t* job, uint3
  * pointer may be NULL. */
 ARCUS_API arcus_status arcus_job_get_translucency_sources(arcus_job_t* job, double* rows, double* sources,
                                                           double* source_weights, double* near_irradiance);
+/* The front sources' sub-pixel points, for checking: `points` and `weights` (E·ΔA per
+ * channel) sub_source_count × 3 each.  Between near_radius_mm and refined_radius_mm of a
+ * row, the system counts these and the back points; beyond, every source; either
+ * pointer may be NULL. */
+ARCUS_API arcus_status arcus_job_get_translucency_sub_sources(arcus_job_t* job, double* points, double* weights);
 
 /* ---- genetic inverse rendering (thesis §3.2, §5.1) ------------------------------------
  * The genes of a model whose render best matches a target image of a known mesh under

@@ -347,6 +347,13 @@ arcus_status arcus_job_get_translucency_sources(arcus_job_t* job, double* rows, 
   });
 }
 
+arcus_status arcus_job_get_translucency_sub_sources(arcus_job_t* job, double* points, double* weights) {
+  return on_job<EstimateJob>(job, "a translucency estimate", [&](EstimateJob* j) {
+    copy_out(j->sub_sources, points);
+    copy_out(j->sub_source_weights, weights);
+  });
+}
+
 arcus_status arcus_translucency_genetic_params_init(int32_t model, arcus_genetic_params* params) {
   return without_context([&] {
     require_pointer(params, "params");

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <string>
+#include <tuple>
+#include <utility>
 
 #include "bvh/bvh.h"
 #include "bvh/device_bvh.h"
@@ -27,6 +29,12 @@ namespace {
 // |c·n| below this is taken as this: ΔA = pixel area / |c·n| diverges at the
 // silhouette, where a pixel holds a sliver of surface turning away (thesis eq. 3.12).
 constexpr double kMinCosine = 0.05;
+
+// The near field, in pixels at the object (estimate() says why): within kNearPixels a
+// disc lit by the row's own irradiance; out to kRefinedPixels the front sources summed
+// over kSubPixels² points a pixel; beyond, one point a pixel.
+constexpr double kNearPixels = 4, kRefinedPixels = 12;
+constexpr uint32_t kSubPixels = 3;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -104,6 +112,133 @@ std::vector<double> bin_averages(const std::vector<double>& basis, uint32_t m, u
     sum[j] /= hi * hi - lo * lo;
   }
   return sum;
+}
+
+// Surface points standing for pixels (eq. 3.12): where, on which triangle, facing
+// where, and how much surface ΔA each stands for (mm²).
+struct SourcePoints {
+  std::vector<double> points;  // 3 each, mm
+  std::vector<uint32_t> triangles;
+  std::vector<Vec3> normals;
+  std::vector<double> area;
+  void add(Vec3 at, int32_t triangle, Vec3 n, double a) {
+    points.insert(points.end(), {at.x, at.y, at.z});
+    triangles.push_back(static_cast<uint32_t>(triangle));
+    normals.push_back(n);
+    area.push_back(a);
+  }
+};
+
+// The surface a pixel sees at `at` along `eye` (toward the camera): its footprint on a
+// plane square to the ray over |c·n|, with |c·n| taken as at least kMinCosine.  The
+// footprint: orthographic, the pixel's side squared; pinhole, its solid angle (cos³ off
+// the axis) times the distance squared.
+double pixel_area(const scene::Frame& frame, double ortho, double pixel_side, double pixel_angle, Vec3 at, Vec3 eye,
+                  Vec3 n) {
+  double footprint = pixel_side * pixel_side;
+  if (ortho == 0) {
+    const double cos_axis = -dot(eye, frame.forward), dist = length(at - frame.origin);
+    footprint = pixel_angle * pixel_angle * cos_axis * cos_axis * cos_axis * dist * dist;
+  }
+  return footprint / std::max(kMinCosine, std::fabs(dot(eye, n)));
+}
+
+// E·ΔA per source and channel (eq. 3.8, 3.12): Σ over the lights it sees of
+// F_t(η, θ_l) E_l cos θ_l, times its area.
+std::vector<double> lit_weights(arcus_context_t* ctx, const bvh::DeviceBvh& bvh, const Surface& surface,
+                                const SourcePoints& s, const std::vector<Light>& lights, double eta) {
+  const std::vector<uint8_t> visible = visibility(ctx, bvh, surface, s.points, s.triangles, lights);
+  std::vector<double> weights(3 * s.area.size(), 0.0);
+  for (size_t k = 0; k < s.area.size(); ++k)
+    for (size_t l = 0; l < lights.size(); ++l) {
+      if (!visible[k * lights.size() + l]) continue;
+      const double cos_i = std::max(0.0, dot(s.normals[k], lights[l].toward));
+      const double through = cos_i * (1 - arcus_fresnel_reflectance(cos_i, 1.0, eta)) * s.area[k];
+      for (int c = 0; c < 3; ++c) weights[3 * k + c] += through * lights[l].irradiance[c];
+    }
+  return weights;
+}
+
+// What refine_near_rings reads.
+struct NearRings {
+  arcus_camera coarse_camera;  // the photo's camera at the coarse pixels
+  double mm_per_unit = 1, ortho = 0;
+  const std::vector<uint8_t>* in_object = nullptr;
+  const Views* front = nullptr;
+  const std::vector<size_t>* front_source = nullptr;  // per coarse pixel of 𝕆: its front source
+  const std::vector<double>* weights = nullptr;       // the sources' E·ΔA, 3 each
+  const std::vector<size_t>* equations = nullptr;     // the rows' pixels
+  const std::vector<double>* rows = nullptr;          // the rows' points
+  uint32_t bins = 0, first_bin = 0, end_bin = 0;      // the bins refined: [first_bin, end_bin)
+  double reach = 0;                                   // the last bin's far edge, mm
+  const std::vector<Light>* lights = nullptr;
+  double eta = 1.3;
+};
+
+// In each row's bins [first_bin, end_bin), the front sources' sums over one point a
+// pixel replaced by sums over kSubPixels² points a pixel (estimate() says why); returns
+// the sub-pixel points and their E·ΔA.  A projection brings no two points closer, so
+// the front points within end_bin's distance of a row lie within as many pixels of it
+// on the image (for a pinhole, pixels at the object's nearest depth).
+std::pair<std::vector<double>, std::vector<double>> refine_near_rings(arcus_context_t* ctx, const bvh::DeviceBvh& bvh,
+                                                                      const Surface& surface, const NearRings& q,
+                                                                      std::vector<double>* hist) {
+  const uint32_t s = kSubPixels, w = q.coarse_camera.width, h = q.coarse_camera.height;
+  arcus_camera fine_camera = q.coarse_camera;
+  fine_camera.width = w * s;
+  fine_camera.height = h * s;
+  const scene::CameraDesc camera = camera_in_mm(fine_camera, q.mm_per_unit);
+  const Views fine = camera_hits(ctx, bvh, surface, camera, q.ortho);
+  const scene::Frame frame = scene::camera_frame(camera);
+  const double pixel_angle = 2 * frame.tan_half / (h * s), pixel_side = q.ortho / (h * s);
+  SourcePoints sub;
+  std::vector<size_t> first(size_t(w) * h + 1, 0);
+  double nearest = INFINITY;  // the nearest object point's distance from a pinhole
+  for (size_t px = 0; px < size_t(w) * h; ++px) {
+    first[px] = sub.area.size();
+    if (!(*q.in_object)[px]) continue;
+    nearest = std::min(nearest, length(vec3(&q.front->points[3 * px]) - frame.origin));
+    const size_t x = px % w, y = px / w;
+    for (uint32_t sy = 0; sy < s; ++sy)
+      for (uint32_t sx = 0; sx < s; ++sx) {
+        const size_t f = (y * s + sy) * size_t(w) * s + x * s + sx;
+        if (fine.triangle[f] < 0) continue;
+        const Vec3 at = vec3(&fine.points[3 * f]), n = vec3(&fine.normals[3 * f]);
+        sub.add(at, fine.triangle[f], n,
+                pixel_area(frame, q.ortho, pixel_side, pixel_angle, at, vec3(&fine.toward_eye[3 * f]), n));
+      }
+  }
+  first.back() = sub.area.size();
+  const std::vector<double> sub_weights = lit_weights(ctx, bvh, surface, sub, *q.lights, q.eta);
+  const double coarse_pixel = q.ortho > 0 ? q.ortho / h : 2 * frame.tan_half / h * nearest;
+  const double inverse = 1 / q.reach;
+  const long window = long(std::ceil(q.end_bin * (q.reach / q.bins) / coarse_pixel)) + 1;
+  // The bin of a distance as the histogram kernel computes it.
+  auto bin_of = [&](Vec3 a, const double* b) {
+    const double dx = a.x - b[0], dy = a.y - b[1], dz = a.z - b[2];
+    const double r = std::sqrt(dx * dx + dy * dy + dz * dz) * inverse;
+    return uint32_t(std::min(r * q.bins, double(q.bins)));
+  };
+  for (size_t i = 0; i < q.equations->size(); ++i) {
+    const Vec3 row = vec3(&(*q.rows)[3 * i]);
+    const long x = long((*q.equations)[i] % w), y = long((*q.equations)[i] / w);
+    double* out = &(*hist)[i * q.bins * 3];
+    for (long yy = std::max(0L, y - window); yy <= std::min(long(h) - 1, y + window); ++yy)
+      for (long xx = std::max(0L, x - window); xx <= std::min(long(w) - 1, x + window); ++xx) {
+        const size_t px = size_t(yy) * w + size_t(xx);
+        if (!(*q.in_object)[px]) continue;
+        const size_t own = (*q.front_source)[px];
+        const uint32_t k = bin_of(row, &q.front->points[3 * px]);
+        if (k >= q.first_bin && k < q.end_bin)
+          for (int c = 0; c < 3; ++c) out[k * 3 + c] -= (*q.weights)[3 * own + c];
+        for (size_t j = first[px]; j < first[px + 1]; ++j) {
+          const uint32_t kj = bin_of(row, &sub.points[3 * j]);
+          if (kj >= q.first_bin && kj < q.end_bin)
+            for (int c = 0; c < 3; ++c) out[kj * 3 + c] += sub_weights[3 * j + c];
+        }
+      }
+  }
+  return {sub.points, sub_weights};
 }
 
 }  // namespace
@@ -219,40 +354,18 @@ std::unique_ptr<EstimateJob> estimate(arcus_context_t* ctx, const geometry::Mesh
   // Sources: every object pixel's front and back point, weighted by E·ΔA (eq. 3.12).
   const scene::Frame frame = scene::camera_frame(camera);
   const double pixel_angle = 2 * frame.tan_half / h, pixel_side = ortho / h;
-  std::vector<double> source_points;
-  std::vector<uint32_t> source_triangles;
-  std::vector<Vec3> source_normals;
-  std::vector<double> source_area;
+  SourcePoints sources;
   for (const Views* side : {&front, &back})
     for (size_t px : object) {
-      const Vec3 at = vec3(&side->points[3 * px]), n = vec3(&side->normals[3 * px]),
-                 eye = vec3(&front.toward_eye[3 * px]);
-      // The pixel's footprint on a plane square to the ray: orthographic, its side
-      // squared; pinhole, its solid angle (cos³ off the axis) times the distance squared.
-      double footprint = pixel_side * pixel_side;
-      if (ortho == 0) {
-        const double cos_axis = -dot(eye, frame.forward), dist = length(at - frame.origin);
-        footprint = pixel_angle * pixel_angle * cos_axis * cos_axis * cos_axis * dist * dist;
-      }
-      source_points.insert(source_points.end(), {at.x, at.y, at.z});
-      source_triangles.push_back(static_cast<uint32_t>(side->triangle[px]));
-      source_normals.push_back(n);
-      source_area.push_back(footprint / std::max(kMinCosine, std::fabs(dot(eye, n))));
+      const Vec3 at = vec3(&side->points[3 * px]), n = vec3(&side->normals[3 * px]);
+      sources.add(at, side->triangle[px], n,
+                  pixel_area(frame, ortho, pixel_side, pixel_angle, at, vec3(&front.toward_eye[3 * px]), n));
     }
-  const std::vector<uint8_t> visible =
-      visibility(ctx, bvh, surface, source_points, source_triangles, light_list);
-  std::vector<double> weights(source_points.size(), 0.0);
+  const std::vector<double>& source_points = sources.points;
+  const std::vector<double>& source_area = sources.area;
+  const std::vector<double> weights = lit_weights(ctx, bvh, surface, sources, light_list, p.eta);
   double total_light = 0;
-  for (size_t s = 0; s < source_normals.size(); ++s)
-    for (size_t l = 0; l < light_list.size(); ++l) {
-      if (!visible[s * light_list.size() + l]) continue;
-      const double cos_i = std::max(0.0, dot(source_normals[s], light_list[l].toward));
-      const double through = cos_i * (1 - arcus_fresnel_reflectance(cos_i, 1.0, p.eta)) * source_area[s];
-      for (int c = 0; c < 3; ++c) {
-        weights[3 * s + c] += through * light_list[l].irradiance[c];
-        total_light += through * light_list[l].irradiance[c];
-      }
-    }
+  for (double x : weights) total_light += x;
   require(total_light > 0, "lights: no light reaches the object's seen or back surface (is the light behind it?)");
 
   // Equations 𝕀: object pixels off the matte's rim, below the highlights' cut.
@@ -289,20 +402,49 @@ std::unique_ptr<EstimateJob> estimate(arcus_context_t* ctx, const geometry::Mesh
   request.reach = res.r_max_mm;
   request.progress = p.progress;
   request.progress_user = p.progress_user;
-  const std::vector<double> hist = distance_histograms(ctx, *job, request, cancelled);
-  res.histogram_seconds = seconds_since(histogram_start);
+  std::vector<double> hist = distance_histograms(ctx, *job, request, cancelled);
 
-  const auto solve_start = std::chrono::steady_clock::now();
-  // The near field: within ρ of a row's point the pixels' lattice is too coarse a sum for
-  // R_d's peak (its width is z_r, near a pixel), so the fine bins there are left out and
-  // replaced by the row's own irradiance over a flat disc of radius ρ, ∫₀^ρ 2πr R_d dr
-  // E_i (fit.h; closed form for the dipole).  ρ: four pixels at the object, in whole bins.
+  // The near field.  One point a pixel is too coarse a sum of R_d where R_d falls by
+  // most of itself across a pixel: within a few pixels of the row, and on a 40 mm sphere
+  // at 200² it cost ℓ_d −85 to −98% in three channels whose ℓ_d is 2–5 mm.  So:
+  //  - within ρ (kNearPixels) the fine bins are left out and replaced by the row's own
+  //    irradiance over a flat disc, E_i ∫₀^ρ 2πr R_d dr (fit.h; closed form for the
+  //    dipole): exact where E is even, and its error grows as ρ² where E curves;
+  //  - from ρ out to kRefinedPixels the front sources are summed over sub-pixels
+  //    (refine_near_rings).
+  // A smaller ρ needs finer sub-pixels, a larger one errs where E curves; docs/
+  // translucency.md tabulates the choice on the sphere and the torus.
   const double fine_width = res.r_max_mm / bins;
   const double pixel_mm = ortho > 0 ? pixel_side : pixel_angle * length(camera.look_at - camera.position);
-  const uint32_t near_bins = std::min(bins - 1, std::max(1u, uint32_t(std::ceil(4 * pixel_mm / fine_width))));
+  const uint32_t near_bins =
+      std::min(bins - 1, std::max(1u, uint32_t(std::ceil(kNearPixels * pixel_mm / fine_width))));
   const double near_radius = near_bins * fine_width;
   std::vector<size_t> front_source(pixels, 0);
   for (size_t k = 0; k < object.size(); ++k) front_source[object[k]] = k;
+  {
+    NearRings q;
+    q.coarse_camera = coarse_camera;
+    q.mm_per_unit = p.mm_per_unit;
+    q.ortho = ortho;
+    q.in_object = &in_object;
+    q.front = &front;
+    q.front_source = &front_source;
+    q.weights = &weights;
+    q.equations = &equations;
+    q.rows = &rows;
+    q.bins = bins;
+    q.first_bin = near_bins;
+    q.end_bin = std::max(near_bins, std::min(bins, uint32_t(std::ceil(kRefinedPixels * pixel_mm / fine_width))));
+    q.reach = res.r_max_mm;
+    q.lights = &light_list;
+    q.eta = p.eta;
+    std::tie(job->sub_sources, job->sub_source_weights) = refine_near_rings(ctx, bvh, surface, q, &hist);
+    res.refined_radius_mm = q.end_bin * fine_width;
+    res.sub_source_count = static_cast<uint32_t>(job->sub_source_weights.size() / 3);
+  }
+  res.histogram_seconds = seconds_since(histogram_start);
+
+  const auto solve_start = std::chrono::steady_clock::now();
   const double exit_scale = (1 / M_PI) / (p.exit == ARCUS_EXIT_NORMALIZED ? exit_transmittance(p.eta) : 1.0);
   const size_t n = equations.size();
   std::vector<double> fine_edges(bins + 1);

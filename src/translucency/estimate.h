@@ -22,6 +22,9 @@ struct EstimateJob : arcus_job_s {
   // The system, per channel: a (3 × n × m), b (3 × n), x (3 × m); and what it is
   // assembled from: rows (n × 3), sources and their weights (2|𝕆| × 3), near (n × 3).
   std::vector<double> a, b, x, rows, sources, source_weights, near;
+  // The front sources' sub-pixel points (3 each) and their E·ΔA (3 each), which stand
+  // for the front sources within the refined radius.
+  std::vector<double> sub_sources, sub_source_weights;
 };
 
 // The luminance above which pixels are highlights (thesis §3.3.1 after Khan et al.

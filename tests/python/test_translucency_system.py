@@ -49,14 +49,22 @@ def test_the_assembly_equals_numpy_pair_by_pair(photo, family):
     s = e.system
     r_max, rho = e.profile[0][-1], s["near_radius_mm"]
     for c in range(3):
-        # eq. 3.16 over the sources beyond ρ, plus the row's own irradiance over the disc
-        # within ρ: ∫₀^ρ 2πr B_h(r) dr, exact over rings r_max/256 wide (on which both
-        # families at m = 16 are constant), the last one ending at ρ.
+        # eq. 3.16 over the sources beyond ρ — out to the refined radius the back points
+        # and the front points' sub-pixels, beyond it every pixel's front and back
+        # point — plus the row's own irradiance over the disc within ρ: ∫₀^ρ 2πr B_h(r) dr,
+        # exact over rings r_max/256 wide (on which both families at m = 16 are
+        # constant), the last one ending at ρ.
+        refined = s["refined_radius_mm"]
+        back = np.arange(len(s["sources"])) >= len(s["sources"]) // 2
         r = np.linalg.norm(s["rows"][:, None, :] - s["sources"][None, :, :], axis=2)
-        keep = (r >= rho) & (r < r_max)
+        keep = (r >= refined) & (r < r_max) | (r >= rho) & (r < refined) & back
+        r_sub = np.linalg.norm(s["rows"][:, None, :] - s["sub_sources"][None, :, :], axis=2)
+        keep_sub = (r_sub >= rho) & (r_sub < refined)
         a = np.zeros((len(r), m))
         for i in range(len(r)):
             a[i] = s["source_weights"][keep[i], c] @ reference_basis(family, m, r[i, keep[i]] / r_max)
+            a[i] += (s["sub_source_weights"][keep_sub[i], c]
+                     @ reference_basis(family, m, r_sub[i, keep_sub[i]] / r_max))
         rings = np.union1d(np.arange(0, rho, r_max / 256), [rho])
         middles = 0.5 * (rings[1:] + rings[:-1]) / r_max
         disc = (np.pi * np.diff(rings ** 2)) @ reference_basis(family, m, middles)

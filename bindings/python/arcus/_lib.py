@@ -246,6 +246,7 @@ _PROTOTYPES = {
     "arcus_job_get_translucency_genetic_image": (_status, [_handle, c_void_p]),
     "arcus_job_get_translucency_system": (_status, [_handle, c_uint32, _dvec, _dvec, _dvec]),
     "arcus_job_get_translucency_sources": (_status, [_handle, _dvec, _dvec, _dvec, _dvec]),
+    "arcus_job_get_translucency_sub_sources": (_status, [_handle, _dvec, _dvec]),
 }
 
 # ---- finding the library --------------------------------------------------------------

@@ -477,4 +477,6 @@ class TranslucencyEstimateResultStruct(ctypes.Structure):
         ("basis", c_int32),
         ("near_radius_mm", c_double),
         ("image_error", c_double * 3),
+        ("refined_radius_mm", c_double),
+        ("sub_source_count", c_uint32),
     ]

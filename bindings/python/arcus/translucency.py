@@ -459,7 +459,9 @@ class Estimate:
     one ``fit`` named; ``system``, when asked for with ``keep_system=True``: per
     channel the assembled ``A`` (3, n, m) per mm², ``b`` (3, n), the weights ``x`` (3, m),
     and what A is made of, in mm: ``rows`` (n, 3), ``sources`` (s, 3),
-    ``source_weights`` (s, 3), ``near_irradiance`` (n, 3), ``near_radius_mm``."""
+    ``source_weights`` (s, 3), ``near_irradiance`` (n, 3), ``near_radius_mm``, and the
+    front sources' sub-pixel points ``sub_sources`` and ``sub_source_weights`` (k, 3),
+    which stand for them from ``near_radius_mm`` to ``refined_radius_mm``."""
     dipole: "Dipole"
     profile: tuple
     condition: dict
@@ -503,8 +505,11 @@ def _system(ctx, job, r):
     rows, sources, weights, near = np.empty((n, 3)), np.empty((s, 3)), np.empty((s, 3)), np.empty((n, 3))
     ctx._check(lib.arcus_job_get_translucency_sources(job, _lib.ptr(rows), _lib.ptr(sources), _lib.ptr(weights),
                                                       _lib.ptr(near)))
+    sub, sub_weights = np.empty((r.sub_source_count, 3)), np.empty((r.sub_source_count, 3))
+    ctx._check(lib.arcus_job_get_translucency_sub_sources(job, _lib.ptr(sub), _lib.ptr(sub_weights)))
     return {"A": a, "b": b, "x": x, "rows": rows, "sources": sources, "source_weights": weights,
-            "near_irradiance": near, "near_radius_mm": r.near_radius_mm}
+            "near_irradiance": near, "near_radius_mm": r.near_radius_mm, "sub_sources": sub,
+            "sub_source_weights": sub_weights, "refined_radius_mm": r.refined_radius_mm}
 
 
 def estimate_bssrdf(photo, mesh, lights, camera=None, *, basis=24, family="piecewise_constant", fit="dipole",
