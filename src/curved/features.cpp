@@ -23,7 +23,7 @@ const FeatureTable kTable{"curved",
 const FeatureTableEntry kRegistered(&kTable);
 
 const KernelSource kAdvance{"curved/advance",
-                            {"common/real.h", "curved/field.h", "curved/advance_desc.h", "curved/state.h",
+                            {"common/real.h", "sky/air.h", "curved/field.h", "curved/advance_desc.h", "curved/state.h",
                              "curved/integrators.h", "curved/crossing.h", "curved/advance.cl"},
                             ""};
 

@@ -12,7 +12,7 @@ const FeatureTable kTable{"render",
 const FeatureTableEntry kRegistered(&kTable);
 
 const KernelSource kTrace{"render/trace",
-                          {"common/real.h", "curved/field.h", "curved/advance_desc.h", "curved/state.h",
+                          {"common/real.h", "sky/air.h", "curved/field.h", "curved/advance_desc.h", "curved/state.h",
                            "curved/integrators.h", "curved/crossing.h", "bvh/bvh_desc.h", "bvh/traverse.h",
                            "render/render_desc.h", "render/hits.h", "curved/advance.cl", "render/walk.cl"},
                           ""};
