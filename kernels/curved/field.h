@@ -20,8 +20,7 @@
 #define ARCUS_KIND_ATMOSPHERE 5
 #define ARCUS_KIND_GRID 6
 
-/* US Standard Atmosphere 1976 constants: g0·M/R* in K/m (hydrostatic equation). */
-#define ARCUS_ATM_G_M_OVER_R 0.034163194736310366
+/* ARCUS_ATM_G_M_OVER_R: kernels/sky/air.h. */
 /* One atmosphere segment in the field data: temperature linear in geopotential height. */
 #define ARCUS_ATM_SEGMENT_BASE_H 0 /* geopotential metres */
 #define ARCUS_ATM_SEGMENT_BASE_T 1 /* K */

@@ -9,6 +9,7 @@
 #include "core/files.h"
 #include "core/format.h"
 #include "core/limits.h"
+#include "sky/us1976.h"
 
 namespace arcus::curved {
 
@@ -16,30 +17,10 @@ const HandleKind kFieldHandle("field");
 
 namespace {
 
-// US Standard Atmosphere 1976 (NOAA-S/T 76-1562), table 4: base geopotential heights
-// (m) and lapse rates (K/m) of its layers up to 84.852 km; isothermal above.
-constexpr double kStdBase[] = {0.0, 11000.0, 20000.0, 32000.0, 47000.0, 51000.0, 71000.0, 84852.0};
-constexpr double kStdLapse[] = {-0.0065, 0.0, 0.001, 0.0028, 0.0, -0.0028, -0.002, 0.0};
-constexpr int kStdLayers = 8;
+// The US Standard Atmosphere 1976 is src/sky/us1976.h; its extension here.
 constexpr double kTopGeometric = 84000.0;          // inversions must end below the table's top
-constexpr double kGeopotentialRadius = 6356766.0;  // r0 of the 1976 standard's H = r0·h/(r0 + h)
 constexpr double kMinTemperature = 50.0;           // K: colder air is no air for this model
 constexpr double kBelowSeaLevel = -1000.0;         // geopotential m: the base of the segment below sea level
-
-double geopotential(double h, double r0) { return r0 * h / (r0 + h); }
-
-// Standard temperature at geopotential height H for a given sea-level temperature.
-double standard_temperature(double H, double t0) {
-  double T = t0;
-  for (int i = 0; i < kStdLayers; ++i) {
-    double top = i + 1 < kStdLayers ? kStdBase[i + 1] : INFINITY;
-    double span = std::min(std::max(H, kStdBase[i]), top) - kStdBase[i];
-    if (i == 0 && H < 0) span = H;  // below sea level the first lapse rate continues
-    T += kStdLapse[i] * span;
-    if (H < top) break;
-  }
-  return T;
-}
 
 struct Layer {
   double base_H, top_H, delta_t;
@@ -157,7 +138,7 @@ void check_atmosphere(const arcus_atmosphere_desc& desc) {
 std::vector<Layer> inversion_layers(const arcus_atmosphere_desc& desc, std::vector<double>* out) {
   std::vector<Layer> layers;
   std::vector<double>& breaks = *out;
-  breaks.assign(kStdBase, kStdBase + kStdLayers);
+  breaks.assign(sky::kStandardBase, sky::kStandardBase + sky::kStandardLayers);
   for (uint32_t i = 0; i < desc.inversion_count; ++i) {
     const arcus_inversion& inv = desc.inversions[i];
     const std::string which = "atmosphere: inversions[" + std::to_string(i) + "]";
@@ -167,7 +148,7 @@ std::vector<Layer> inversion_layers(const arcus_atmosphere_desc& desc, std::vect
             which + ": need 0 <= base < top <= 84000 m (base " + number(inv.base) + ", top " + number(inv.top) + ")");
     require(std::fabs(inv.delta_t) <= 100.0, which + ": |delta_t| = " + number(std::fabs(inv.delta_t)) +
                                                  " K exceeds 100 K");
-    layers.push_back({geopotential(inv.base, kGeopotentialRadius), geopotential(inv.top, kGeopotentialRadius), inv.delta_t});
+    layers.push_back({sky::geopotential_height(inv.base), sky::geopotential_height(inv.top), inv.delta_t});
     breaks.push_back(layers.back().base_H);
     breaks.push_back(layers.back().top_H);
   }
@@ -188,8 +169,7 @@ void set_step_limits(const std::vector<double>& breaks, const std::vector<Layer>
   FieldBuild& b = *out;
   // The thinnest layer in geometric height, and the height of the last break (above it
   // the air is isothermal and smooth): DP45's steps span at most half of it (field.h).
-  const double R = kGeopotentialRadius;
-  auto geometric = [&](double H) { return R * H / (R - H); };
+  const auto geometric = sky::geometric_height;
   double inversions_top_H = 0;
   for (const Layer& l : layers) inversions_top_H = std::max(inversions_top_H, l.top_H);
   b.desc.inversions_top = geometric(inversions_top_H);
@@ -212,7 +192,7 @@ FieldBuild atmosphere(const arcus_atmosphere_desc& desc) {
   const std::vector<Layer> layers = inversion_layers(desc, &breaks);
 
   auto temperature = [&](double H) {
-    return standard_temperature(H, desc.sea_level_temperature) + inversion_offset(H, layers);
+    return sky::standard_temperature(H, desc.sea_level_temperature) + inversion_offset(H, layers);
   };
   // T is linear between consecutive breaks, so each piece is one segment; pressure
   // follows from the hydrostatic equation in closed form, as in atmosphere_eval.
@@ -221,7 +201,7 @@ FieldBuild atmosphere(const arcus_atmosphere_desc& desc) {
   {
     // The pressure at kBelowSeaLevel, from sea level down (the closed form below, reversed).
     const double T_low = temperature(kBelowSeaLevel), lapse = (temperature(0.0) - T_low) / -kBelowSeaLevel;
-    p *= std::exp(ARCUS_ATM_G_M_OVER_R * std::log1p(lapse * -kBelowSeaLevel / T_low) / lapse);
+    p /= sky::pressure_ratio(-kBelowSeaLevel, T_low, lapse);
   }
   for (size_t k = 0; k < breaks.size(); ++k) {
     if (breaks[k] == 0.0) p = desc.sea_level_pressure;  // exactly, not through the round trip
@@ -230,7 +210,7 @@ FieldBuild atmosphere(const arcus_atmosphere_desc& desc) {
       const std::string where = "atmosphere: the temperature falls to " + number(T0) + " K at geopotential height " +
                                 number(H0) + " m";
       fail(ARCUS_ERROR_INVALID_ARGUMENT,
-           layers.empty() || standard_temperature(H0, desc.sea_level_temperature) <= kMinTemperature
+           layers.empty() || sky::standard_temperature(H0, desc.sea_level_temperature) <= kMinTemperature
                ? where + ": the standard lapse rates from a sea-level temperature of " +
                      number(desc.sea_level_temperature) + " K reach below " + number(kMinTemperature) +
                      " K there; raise sea_level_temperature"
@@ -239,16 +219,12 @@ FieldBuild atmosphere(const arcus_atmosphere_desc& desc) {
     double lapse = 0.0;  // above the last break: isothermal, as the 1976 table
     if (k + 1 < breaks.size()) lapse = (temperature(breaks[k + 1]) - T0) / (breaks[k + 1] - H0);
     b.data.insert(b.data.end(), {H0, T0, lapse, p});
-    if (k + 1 < breaks.size()) {
-      double dH = breaks[k + 1] - H0, x = lapse * dH / T0;
-      double integral = std::fabs(x) < 1e-12 ? dH / T0 : std::log1p(x) / lapse;
-      p *= std::exp(-ARCUS_ATM_G_M_OVER_R * integral);
-    }
+    if (k + 1 < breaks.size()) p *= sky::pressure_ratio(breaks[k + 1] - H0, T0, lapse);
   }
 
   b.desc.spherical = desc.spherical;
   b.desc.earth_radius = ARCUS_EARTH_RADIUS;
-  b.desc.geopotential_radius = kGeopotentialRadius;
+  b.desc.geopotential_radius = sky::kGeopotentialRadius;
   b.desc.count = static_cast<int32_t>(breaks.size());
   set_step_limits(breaks, layers, &b);
   b.desc.refractivity = ciddor_refractivity(desc.wavelength);
