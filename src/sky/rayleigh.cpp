@@ -22,6 +22,16 @@ double king_factor(double wavelength_nm, double co2_ppm) {
   return (78.084 * n2 + 20.946 * o2 + 0.934 * 1.0 + co2 * 1.15) / (78.084 + 20.946 + 0.934 + co2);
 }
 
+double depolarisation_ratio(double wavelength_nm, double co2_ppm) {
+  const double f = king_factor(wavelength_nm, co2_ppm);
+  return 6 * (f - 1) / (3 + 7 * f);
+}
+
+double rayleigh_phase(double cos_theta, double wavelength_nm, double co2_ppm) {
+  const double rho = depolarisation_ratio(wavelength_nm, co2_ppm), gamma = rho / (2 - rho);
+  return 3 / (16 * M_PI * (1 + 2 * gamma)) * ((1 + 3 * gamma) + (1 - gamma) * cos_theta * cos_theta);
+}
+
 double rayleigh_cross_section(double wavelength_nm, double co2_ppm) {
   // Ciddor's n − 1 is for 450 ppm of CO2; his eq. 2 carries it to another content.
   const double n_minus_1 = ciddor_refractivity(wavelength_nm) * kStandardPressure / kStandardTemperature *

@@ -12,6 +12,14 @@ namespace arcus::sky {
 // the gases' volume fractions (78.084%, 20.946%, 0.934%, CO2).
 double king_factor(double wavelength_nm, double co2_ppm);
 
+// The depolarisation ratio ρ_n that the King factor stands for, F_K = (6 + 3ρ_n)/(6 − 7ρ_n).
+double depolarisation_ratio(double wavelength_nm, double co2_ppm);
+
+// Rayleigh's phase function of air per steradian, normalised over the sphere, with its
+// molecules' anisotropy (Chandrasekhar 1950; Bucholtz 1995, eq. 12):
+// 3/(16π(1 + 2γ))·((1 + 3γ) + (1 − γ)cos²θ), γ = ρ_n/(2 − ρ_n).
+double rayleigh_phase(double cos_theta, double wavelength_nm, double co2_ppm);
+
 // σ per molecule (m²): 24π³(n_s² − 1)²/(λ⁴ N_s² (n_s² + 2)²) · F_K, with n_s the index
 // of standard air (15 °C, 101 325 Pa; Ciddor 1996, kernels/sky/air.h, with Ciddor's
 // CO2 term) and N_s its number density (ideal gas).

@@ -54,6 +54,27 @@ TEST(SkyRayleigh, TheKingFactorIsTheVolumeWeightedMean) {
   EXPECT_GT(arcus::sky::king_factor(400, 360), arcus::sky::king_factor(700, 360));
 }
 
+TEST(SkyRayleigh, ThePhaseFunctionIsNormalisedAndKeepsTheKingFactor) {
+  for (const double nm : {400.0, 550.0, 700.0}) {
+    // ∫ p dΩ = 2π ∫_{-1}^{1} p dμ: p is a quadratic in μ, which Simpson integrates exactly.
+    const double integral = 2 * M_PI * (2.0 / 6) *
+                            (arcus::sky::rayleigh_phase(-1, nm, 360) + 4 * arcus::sky::rayleigh_phase(0, nm, 360) +
+                             arcus::sky::rayleigh_phase(1, nm, 360));
+    EXPECT_NEAR(integral, 1, 1e-14) << nm;
+    // The depolarisation ratio gives back the King factor it came from.
+    const double rho = arcus::sky::depolarisation_ratio(nm, 360);
+    EXPECT_NEAR((6 + 3 * rho) / (6 - 7 * rho), arcus::sky::king_factor(nm, 360), 1e-14) << nm;
+    // Anisotropic molecules scatter more to the side than the classical 1 + cos²θ: the
+    // ratio of side to forward, (1 + 3γ)/2(1 + γ), lies between 1/2 and 1.
+    const double side = arcus::sky::rayleigh_phase(0, nm, 360) / arcus::sky::rayleigh_phase(1, nm, 360);
+    EXPECT_GT(side, 0.5);
+    EXPECT_LT(side, 0.52);  // ρ_n ≈ 0.03 for air: γ ≈ 0.015
+  }
+  // Air's depolarisation ratio in the visible: Young's (1980) 0.0279, long the value
+  // used, against Bates' wavelength-dependent one (0.0282 here at 550 nm).
+  EXPECT_NEAR(arcus::sky::depolarisation_ratio(550, 360), 0.0279, 0.001);
+}
+
 TEST(SkyRayleigh, ThinnerAirAboveAHighSiteScattersLess) {
   // The column's molecules go as the pressure over gravity at its centre of mass, which
   // rises by 0.73737 of the site's height: half the pressure 2 km up, half the depth
