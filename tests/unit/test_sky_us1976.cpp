@@ -1,12 +1,14 @@
 // The US Standard Atmosphere 1976 (src/sky/us1976.h) against the standard's own
 // figures (NOAA-S/T 76-1562): the temperature and pressure at its layers' bases, the
-// density and number density at sea level, and the geopotential conversion's round
-// trip.  The standard computed its pressures with the same g0·M/R* in the same closed
+// density and number density at sea level, the geopotential conversion's round trip;
+// and its column of air against Bodhaine et al.'s (src/sky/rayleigh.h), another route.  The standard computed its pressures with the same g0·M/R* in the same closed
 // form, and prints them to 7 digits: they agree to the print.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
+#include "sky/rayleigh.h"
 #include "sky/us1976.h"
 
 namespace {
@@ -43,6 +45,28 @@ TEST(SkyUs1976, GeopotentialAndGeometricHeightsAreInverse) {
 TEST(SkyUs1976, AnIsothermalLayerThinsExponentially) {
   // dp/p = −(g0 M/R*) dH/T: over 5 km at 216.65 K, exp(−0.034163·5000/216.65).
   EXPECT_NEAR(pressure_ratio(5000, 216.65, 0), std::exp(-0.034163194736310366 * 5000 / 216.65), 1e-15);
+}
+
+TEST(SkyUs1976, ItsColumnOfAirIsBodhainesColumn) {
+  // Two routes to the molecules over a square metre at sea level: Simpson over the
+  // standard's number density, 0 to 86 km in geometric height (the 1.5·10⁻⁵ of the
+  // column above is left out), against p·N_A/(m_a·g) with g at the column's centre of
+  // mass (Bodhaine et al. 1999, src/sky/rayleigh.h).  The standard holds g0·M/R* fixed
+  // in geopotential height; Bodhaine's g at 45° and 5.5 km stands for the same fall of
+  // gravity: they agree within 5·10⁻⁴.
+  const int n = 20000;
+  const double top = 86000, step = top / n;
+  double column = 0;
+  for (int i = 0; i <= n; ++i) {
+    const double H = geopotential_height(i * step);
+    const double density = number_density(standard_pressure(H, 101325, 288.15), standard_temperature(H, 288.15));
+    column += (i == 0 || i == n ? 1 : i % 2 ? 4 : 2) * density;
+  }
+  column *= step / 3;
+  const double bodhaine = arcus::sky::rayleigh_optical_depth(550, 101325, 45, 0, 0) /
+                          arcus::sky::rayleigh_cross_section(550, 0);
+  std::printf("molecules over a square metre: %.6e by the standard, %.6e by Bodhaine's column\n", column, bodhaine);
+  EXPECT_NEAR(column / bodhaine, 1, 5e-4);
 }
 
 }  // namespace
