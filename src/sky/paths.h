@@ -1,0 +1,18 @@
+// Columns of air along straight paths through the standard atmosphere (src/sky/
+// us1976.h) over a spherical Earth: what a ray's optical depth is made of before
+// refraction bends it.  Host code; metres, radians.
+#pragma once
+
+namespace arcus::sky {
+
+constexpr double kEarthRadius = 6371000.0;  // m, the mean radius (as the curved engine's ARCUS_EARTH_RADIUS)
+constexpr double kAtmosphereTop = 86000.0;  // m geometric: the standard's table ends here
+
+// Molecules per m² along the straight ray from geometric height `site_m` at zenith
+// angle `zenith` (0 = up, < π/2) to the top of the atmosphere.
+double slant_column(double site_m, double zenith);
+
+// The relative air mass: the slant column over the vertical one.
+double relative_air_mass(double site_m, double zenith);
+
+}  // namespace arcus::sky
