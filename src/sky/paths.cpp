@@ -1,29 +1,55 @@
 #include "sky/paths.h"
 
+#include <algorithm>
 #include <cmath>
 
+#include "common/real.h"
+#include "sky/air.h"  // kernels/sky/air.h: Ciddor's index
 #include "sky/us1976.h"
 
 namespace arcus::sky {
 
-double slant_column(double site_m, double zenith) {
-  // Along the ray s, the height is h(s) = sqrt(r0² + s² + 2 r0 s cos z) − R; the path
-  // to the top has length L.  Simpson in u with s = L u², which crowds the steps near
-  // the ground, where the air is densest and, at low sun, changes fastest along s.
-  const double r0 = kEarthRadius + site_m, top = kEarthRadius + kAtmosphereTop, c = std::cos(zenith);
-  const double length = -r0 * c + std::sqrt(r0 * r0 * c * c + top * top - r0 * r0);
-  const int n = 4000;
-  double sum = 0;
-  for (int i = 0; i <= n; ++i) {
-    const double u = double(i) / n, s = length * u * u;
-    const double h = std::sqrt(r0 * r0 + s * s + 2 * r0 * s * c) - kEarthRadius;
-    const double H = geopotential_height(h);
-    const double density = number_density(standard_pressure(H, 101325, 288.15), standard_temperature(H, 288.15));
-    sum += (i == 0 || i == n ? 1 : i % 2 ? 4 : 2) * density * 2 * length * u;
-  }
-  return sum / (3.0 * n);
+namespace {
+
+struct Air {
+  double density, index;  // molecules per m³, n
+};
+
+Air air_at(double h, double refractivity) {
+  const double H = geopotential_height(h), p = standard_pressure(H, 101325, 288.15), T = standard_temperature(H, 288.15);
+  return {number_density(p, T), 1 + refractivity * p / T};
 }
 
+// The column along a ray whose air has (n − 1)·T/p = refractivity (0: a straight ray).
+// In r from the site up: ds = dr/cos θ, sin θ = b/(n r) with b = n0 r0 sin z.  At the
+// horizon cos θ → 0 at the site as √(r − r0), so r = r0 + L u² makes the integrand
+// finite (dr = 2 L u du); the midpoint rule in u never evaluates u = 0 itself.
+double column(double site_m, double zenith, double refractivity) {
+  const double r0 = kEarthRadius + site_m, length = kAtmosphereTop - site_m;
+  const double b = air_at(site_m, refractivity).index * r0 * std::sin(zenith);
+  const int n = 8000;
+  double sum = 0;
+  for (int i = 0; i < n; ++i) {
+    const double u = (i + 0.5) / n, r = r0 + length * u * u;
+    const Air a = air_at(r - kEarthRadius, refractivity);
+    const double sine = b / (a.index * r);
+    sum += a.density * 2 * length * u / std::sqrt(std::max((1 - sine) * (1 + sine), 0.0));
+  }
+  return sum / n;
+}
+
+}  // namespace
+
+double slant_column(double site_m, double zenith) { return column(site_m, zenith, 0); }
+
 double relative_air_mass(double site_m, double zenith) { return slant_column(site_m, zenith) / slant_column(site_m, 0); }
+
+double refracted_column(double site_m, double zenith, double wavelength_nm) {
+  return column(site_m, zenith, ciddor_refractivity(wavelength_nm));
+}
+
+double refracted_air_mass(double site_m, double zenith, double wavelength_nm) {
+  return refracted_column(site_m, zenith, wavelength_nm) / refracted_column(site_m, 0, wavelength_nm);
+}
 
 }  // namespace arcus::sky

@@ -15,4 +15,13 @@ double slant_column(double site_m, double zenith);
 // The relative air mass: the slant column over the vertical one.
 double relative_air_mass(double site_m, double zenith);
 
+// Molecules per m² along the ray that leaves the site at apparent zenith angle
+// `zenith` (<= π/2) and bends as the air's index falls with height (at
+// `wavelength_nm`): in air whose index depends on r alone, n·r·sin θ is constant along
+// a ray (Bouguer), so ds = dr/cos θ(r).
+double refracted_column(double site_m, double zenith, double wavelength_nm);
+
+// The refracted path's relative air mass.
+double refracted_air_mass(double site_m, double zenith, double wavelength_nm);
+
 }  // namespace arcus::sky
