@@ -4,11 +4,11 @@
 
 #include "common/real.h"
 #include "sky/air.h"  // kernels/sky/air.h
+#include "sky/us1976.h"
 
 namespace arcus::sky {
 namespace {
 
-constexpr double kBoltzmann = 1.380649e-23;  // J/K (SI 2019, exact)
 constexpr double kAvogadro = 6.02214076e23;  // 1/mol (SI 2019, exact)
 constexpr double kStandardTemperature = 288.15, kStandardPressure = 101325.0;  // Ciddor's standard air
 
@@ -37,10 +37,10 @@ double rayleigh_cross_section(double wavelength_nm, double co2_ppm) {
   const double n_minus_1 = ciddor_refractivity(wavelength_nm) * kStandardPressure / kStandardTemperature *
                            (1 + 0.534e-6 * (co2_ppm - 450));
   const double n2 = (1 + n_minus_1) * (1 + n_minus_1);
-  const double number_density = kStandardPressure / (kBoltzmann * kStandardTemperature);  // 1/m³
+  const double density = number_density(kStandardPressure, kStandardTemperature);  // 1/m³
   const double lambda = wavelength_nm * 1e-9;
   const double ratio = (n2 - 1) / (n2 + 2);
-  return 24 * M_PI * M_PI * M_PI * ratio * ratio / (lambda * lambda * lambda * lambda * number_density * number_density) *
+  return 24 * M_PI * M_PI * M_PI * ratio * ratio / (lambda * lambda * lambda * lambda * density * density) *
          king_factor(wavelength_nm, co2_ppm);
 }
 
