@@ -2,7 +2,8 @@
 # Installs every system and Python dependency arcus needs; idempotent (a second run
 # installs nothing and takes a few seconds).  Debian 12 packages + PyPI only.
 # `--test` adds what only the tests use: Mitsuba 3, an external reference for the
-# translucency engine (tests/python/mitsuba_slab.py).
+# translucency engine (tests/python/mitsuba_slab.py), and pvlib, whose SPCTRAL2 checks
+# the shared sun (tests/python/test_daylight.py).
 set -euo pipefail
 test_deps=0
 [ "${1:-}" = "--test" ] && test_deps=1
@@ -36,9 +37,9 @@ if ! "$PY" -c 'import numpy, scipy, pytest, matplotlib, tqdm, dask.distributed, 
   # Debian's own python3 refuses pip installs into it (PEP 668) unless told otherwise.
   "${pip_install[@]}" 2> /dev/null || "${pip_install[@]}" --break-system-packages
 fi
-if [ $test_deps -eq 1 ] && ! "$PY" -c 'import mitsuba' 2>/dev/null; then
-  echo "bootstrap: installing the tests' Python references from PyPI (mitsuba)"
-  pip_install=("$PY" -m pip install -q --disable-pip-version-check mitsuba)
+if [ $test_deps -eq 1 ] && ! "$PY" -c 'import mitsuba, pvlib' 2>/dev/null; then
+  echo "bootstrap: installing the tests' Python references from PyPI (mitsuba pvlib)"
+  pip_install=("$PY" -m pip install -q --disable-pip-version-check mitsuba pvlib)
   "${pip_install[@]}" 2> /dev/null || "${pip_install[@]}" --break-system-packages
 fi
 echo "bootstrap: all dependencies present"

@@ -22,5 +22,6 @@
 #include "arcus_rainbow.h"
 #include "arcus_translucency.h"
 #include "arcus_image.h"
+#include "arcus_daylight.h"
 
 #endif /* ARCUS_ARCUS_H */

@@ -3,6 +3,8 @@
 // refraction bends it.  Host code; metres, radians.
 #pragma once
 
+#include <functional>
+
 namespace arcus::sky {
 
 constexpr double kEarthRadius = 6371000.0;  // m, the mean radius (as the curved engine's ARCUS_EARTH_RADIUS)
@@ -20,6 +22,19 @@ double relative_air_mass(double site_m, double zenith);
 // `wavelength_nm`): in air whose index depends on r alone, n·r·sin θ is constant along
 // a ray (Bouguer), so ds = dr/cos θ(r).
 double refracted_column(double site_m, double zenith, double wavelength_nm);
+
+// Other gases and particles along the same path: `count` number densities (per m³, or
+// any per-metre quantity) as functions of geometric height, all filled by one call.
+constexpr int kMaxDensities = 4;
+struct Densities {
+  int count = 0;
+  std::function<void(double height_m, double* densities)> at;
+  explicit operator bool() const { return count > 0; }
+};
+
+// columns[0] = refracted_column, columns[1 + k] = ∫ density k ds along that same path.
+void refracted_columns(double site_m, double zenith, double wavelength_nm, const Densities& densities,
+                       double* columns);
 
 // The refracted path's relative air mass.
 double refracted_air_mass(double site_m, double zenith, double wavelength_nm);

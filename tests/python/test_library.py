@@ -172,6 +172,11 @@ int main(void) {
   F(arcus_dipole_terms, diffuse_length) F(arcus_dipole_terms, z_r) F(arcus_dipole_terms, z_v)
   F(arcus_dipole_terms, total_reflectance) F(arcus_dipole_terms, diffusive) F(arcus_dipole_terms, f_dr)
   F(arcus_dipole_terms, a) F(arcus_dipole_terms, exit_transmittance)
+  printf("arcus_daylight_desc %zu\n", sizeof(arcus_daylight_desc));
+  F(arcus_daylight_desc, site_height) F(arcus_daylight_desc, ozone_du) F(arcus_daylight_desc, aerosol_depth_500)
+  F(arcus_daylight_desc, angstrom_exponent) F(arcus_daylight_desc, aerosol_scale_height) F(arcus_daylight_desc, co2_ppm)
+  printf("arcus_optical_depths %zu\n", sizeof(arcus_optical_depths));
+  F(arcus_optical_depths, rayleigh) F(arcus_optical_depths, ozone) F(arcus_optical_depths, aerosol)
   return 0;
 }
 """
@@ -188,6 +193,8 @@ STRUCTS = {
     "arcus_mie_efficiencies": _lib.MieEfficienciesStruct,
     "arcus_dipole": _lib.DipoleStruct,
     "arcus_dipole_terms": _lib.DipoleTermsStruct,
+    "arcus_daylight_desc": _lib.DaylightDescStruct,
+    "arcus_optical_depths": _lib.OpticalDepthsStruct,
 }
 
 

@@ -28,23 +28,11 @@ namespace embedded {
 
 constexpr double kPi = 3.14159265358979323846;
 
-using Rows = std::vector<std::vector<std::string>>;
+using arcus_unit::Rows;
 
 // A CSV under data/ocean/ without its header (checked).
 Rows read_csv(const std::string& name, const std::string& header) {
-  std::ifstream in(std::string(ARCUS_SOURCE_DIR) + "/data/ocean/" + name);
-  EXPECT_TRUE(in) << name;
-  std::string line;
-  std::getline(in, line);
-  EXPECT_EQ(line, header) << name;
-  Rows rows;
-  while (std::getline(in, line)) {
-    std::istringstream s(line);
-    std::vector<std::string> fields;
-    for (std::string f; std::getline(s, f, ',');) fields.push_back(f);
-    rows.push_back(fields);
-  }
-  return rows;
+  return arcus_unit::read_data_csv("ocean", name, header);
 }
 
 using arcus_unit::Failure;

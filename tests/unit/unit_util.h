@@ -7,8 +7,11 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "arcus/arcus.h"
 #include "core/error.h"
@@ -48,6 +51,25 @@ class TempDir {
  private:
   std::string path_;
 };
+
+// A CSV of data/<folder>/ without its header line, which must be `header`; its fields
+// as written (the embedded tables' tests compare them with the library's numbers).
+using Rows = std::vector<std::vector<std::string>>;
+inline Rows read_data_csv(const std::string& folder, const std::string& name, const std::string& header) {
+  std::ifstream in(std::string(ARCUS_SOURCE_DIR) + "/data/" + folder + "/" + name);
+  EXPECT_TRUE(in) << name;
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, header) << name;
+  Rows rows;
+  while (std::getline(in, line)) {
+    std::istringstream s(line);
+    std::vector<std::string> fields;
+    for (std::string f; std::getline(s, f, ',');) fields.push_back(f);
+    rows.push_back(fields);
+  }
+  return rows;
+}
 
 struct Context {
   arcus_context_t* ctx = nullptr;

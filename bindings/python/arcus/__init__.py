@@ -19,7 +19,7 @@ The shared library is looked up, in order, at the ARCUS_LIBRARY environment vari
 
 import ctypes as _ctypes
 
-from . import fields, halo, image, mie, ocean, rainbow, sky, sweep, translucency
+from . import daylight, fields, halo, image, mie, ocean, rainbow, sky, sweep, translucency
 from ._constants import (
     DEVICE_DEFAULT,
     EARTH_RADIUS,
@@ -85,6 +85,7 @@ __all__ = [
     "RenderResult",
     "Scene",
     "SceneField",
+    "daylight",
     "devices",
     "feature_names",
     "fields",

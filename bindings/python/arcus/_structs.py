@@ -255,6 +255,19 @@ class RainbowStatsStruct(ctypes.Structure):
         (name, c_double) for name in ("cast_seconds", "patch_seconds", "bvh_seconds", "query_seconds")]
 
 
+class DaylightDescStruct(ctypes.Structure):
+    """arcus_daylight_desc."""
+
+    _fields_ = [("site_height", c_double), ("ozone_du", c_double), ("aerosol_depth_500", c_double),
+                ("angstrom_exponent", c_double), ("aerosol_scale_height", c_double), ("co2_ppm", c_double)]
+
+
+class OpticalDepthsStruct(ctypes.Structure):
+    """arcus_optical_depths."""
+
+    _fields_ = [("rayleigh", c_double), ("ozone", c_double), ("aerosol", c_double)]
+
+
 class MieEfficienciesStruct(ctypes.Structure):
     """arcus_mie_efficiencies."""
 

@@ -1,0 +1,143 @@
+"""The sun and the clear atmosphere every engine shares (``arcus_daylight.h``).
+
+::
+
+    import numpy as np
+    import arcus.daylight as daylight
+
+    nm = np.arange(360.0, 831.0, 5.0)
+    top = daylight.solar_irradiance(nm, band=5)            # W m⁻² nm⁻¹ above the air
+    t = daylight.sun_transmittance(nm, apparent_zenith=80, aerosol_depth_500=0.05)
+    ground = top * t                                       # the direct sun at the ground
+    d = daylight.optical_depths(nm)                        # straight up: .rayleigh, .ozone, .aerosol
+
+The atmosphere is the US Standard Atmosphere 1976's air (Rayleigh scattering as
+Bodhaine et al. 1999 compute it), an ozone layer (Serdyuchenko et al. 2014's
+cross-section at 233 K, a tent from 10 to 40 km) and an aerosol layer (an optical
+depth at 500 nm, Ångström's exponent, an exponential profile), along the path a ray
+takes as refraction bends it over the round Earth; water vapour and the O2 bands are
+left out.  The sun's spectrum above the air is ASTM G173-03's; its disc darkens toward
+the limb as Neckel (2005) fitted.  Host code in the library (no context, no device).
+
+Units: wavelengths in nanometres (vacuum, 360–830 nm for the atmosphere), heights in
+metres, angles in degrees; ``apparent_zenith`` is the direction the ray leaves the
+observer in (0 = up, 90 = the horizon), i.e. where the sun is seen, refraction included.
+"""
+
+from ctypes import byref
+from dataclasses import dataclass, fields, replace
+
+import numpy as np
+
+from . import _lib
+from ._args import to_float, to_real_array
+from ._errors import ArgumentError
+from ._lib import lib
+
+__all__ = ["Atmosphere", "OpticalDepths", "default_atmosphere", "optical_depths", "sun_transmittance",
+           "solar_irradiance", "limb_darkening"]
+
+
+@dataclass(frozen=True)
+class Atmosphere:
+    """A clear atmosphere (``arcus_daylight_desc``); :func:`default_atmosphere` gives the
+    library's defaults.
+
+    Attributes:
+        site_height: the observer's geometric height [m], 0–80 000.
+        ozone_du: the ozone column above sea level [Dobson units], 0–1000.
+        aerosol_depth_500: the aerosol's vertical optical depth above the site at 500 nm.
+        angstrom_exponent: α in τ(λ) = τ(500)·(λ/500 nm)^−α.
+        aerosol_scale_height: the aerosol's density falls as exp(−(h − site)/H) [m].
+        co2_ppm: CO2 in the air's King factor and refractive index.
+    """
+
+    site_height: float
+    ozone_du: float
+    aerosol_depth_500: float
+    angstrom_exponent: float
+    aerosol_scale_height: float
+    co2_ppm: float
+
+    def _struct(self):
+        return _lib.DaylightDescStruct(*(to_float(getattr(self, f.name), f.name) for f in fields(self)))
+
+
+@dataclass(frozen=True, eq=False)
+class OpticalDepths:
+    """Optical depths per wavelength (:func:`optical_depths`); ``total`` is their sum."""
+
+    wavelength: np.ndarray
+    rayleigh: np.ndarray
+    ozone: np.ndarray
+    aerosol: np.ndarray
+
+    @property
+    def total(self):
+        return self.rayleigh + self.ozone + self.aerosol
+
+
+def default_atmosphere():
+    """The library's clear day: sea level, 300 DU, τ(500) = 0.1, α = 1.3, H = 1200 m, 415 ppm."""
+    desc = _lib.DaylightDescStruct()
+    _lib.check(lib.arcus_daylight_desc_init(byref(desc)))
+    return Atmosphere(*(getattr(desc, f.name) for f in fields(Atmosphere)))
+
+
+def _atmosphere(atmosphere, overrides):
+    if atmosphere is None:
+        atmosphere = default_atmosphere()
+    elif not isinstance(atmosphere, Atmosphere):
+        raise ArgumentError("atmosphere must be an arcus.daylight.Atmosphere or None, got %r" % (atmosphere,))
+    names = {f.name for f in fields(Atmosphere)}
+    unknown = sorted(set(overrides) - names)
+    if unknown:
+        raise ArgumentError("unknown atmosphere parameter %s (known: %s)" % (unknown[0], ", ".join(sorted(names))))
+    return replace(atmosphere, **overrides)
+
+
+def _wavelengths(wavelength):
+    wl = to_real_array(wavelength, "wavelength")
+    return wl, np.ascontiguousarray(wl.reshape(-1))
+
+
+def optical_depths(wavelength, apparent_zenith=0.0, atmosphere=None, **overrides):
+    """The air's, ozone's and aerosol's optical depths along the refracted ray leaving
+    the observer at ``apparent_zenith`` degrees (0: straight up) to the top of the
+    atmosphere, at each ``wavelength`` (nm, 360–830).  ``atmosphere`` (an
+    :class:`Atmosphere`, default :func:`default_atmosphere`) with any of its fields
+    replaced by keyword: ``optical_depths(nm, 60, ozone_du=250)``."""
+    desc = _atmosphere(atmosphere, overrides)._struct()
+    wl, flat = _wavelengths(wavelength)
+    out = (_lib.OpticalDepthsStruct * max(flat.size, 1))()
+    _lib.check(lib.arcus_daylight_optical_depths(byref(desc), to_float(apparent_zenith, "apparent_zenith"), flat.size,
+                                                 _lib.ptr(flat), out))
+    get = lambda name: np.array([getattr(out[i], name) for i in range(flat.size)]).reshape(wl.shape)
+    return OpticalDepths(wavelength=wl.copy(), rayleigh=get("rayleigh"), ozone=get("ozone"), aerosol=get("aerosol"))
+
+
+def sun_transmittance(wavelength, apparent_zenith, atmosphere=None, **overrides):
+    """The direct sun's transmittance exp(−τ) along the refracted path at
+    ``apparent_zenith`` degrees (see :func:`optical_depths`)."""
+    return np.exp(-optical_depths(wavelength, apparent_zenith, atmosphere, **overrides).total)
+
+
+def solar_irradiance(wavelength, band=0.0):
+    """The sun's spectral irradiance above the atmosphere at 1 AU [W m⁻² nm⁻¹] (ASTM
+    G173-03, 300–1000 nm): at each ``wavelength`` (band = 0) or averaged over
+    [λ − band/2, λ + band/2] nm."""
+    wl, flat = _wavelengths(wavelength)
+    out = np.zeros(flat.size)
+    _lib.check(lib.arcus_daylight_solar_irradiance(flat.size, _lib.ptr(flat), to_float(band, "band"), _lib.ptr(out)))
+    return out.reshape(wl.shape)
+
+
+def limb_darkening(wavelength, mu):
+    """The sun's radiance at ``mu`` (the cosine between the line of sight and the sun's
+    surface normal: 1 at the disc's centre, 0 at its limb) over the centre's, at
+    ``wavelength`` nm (300–1100); the two broadcast against each other."""
+    wl, m = np.broadcast_arrays(to_real_array(wavelength, "wavelength"), to_real_array(mu, "mu"))
+    wl_flat, mu_flat = np.ascontiguousarray(wl.reshape(-1)), np.ascontiguousarray(m.reshape(-1))
+    out = np.zeros(wl_flat.size)
+    _lib.check(lib.arcus_daylight_limb_darkening(wl_flat.size, _lib.ptr(wl_flat), _lib.ptr(mu_flat), _lib.ptr(out)))
+    return out.reshape(wl.shape)

@@ -1,0 +1,65 @@
+/*
+ * arcus daylight: the sun and the clear atmosphere every engine shares (src/sky/).  The
+ * sun's spectral irradiance above the atmosphere (ASTM G173-03) and its disc's limb
+ * darkening (Neckel 2005); the optical depths of the US Standard Atmosphere 1976's air
+ * (Rayleigh scattering, Bodhaine et al. 1999), an ozone layer (Serdyuchenko et al. 2014
+ * at 233 K) and an aerosol layer (Ångström's law, an exponential profile) along the
+ * path a ray takes as refraction bends it over the round Earth.  Water vapour and the
+ * O2 bands are left out.  Host code: no context, no device (errors: arcus_last_error).
+ * Include arcus.h.
+ *
+ * Units (arcus_core.h): metres, nanometres in vacuum, degrees where a name ends in
+ * _deg.  Wavelengths of the atmosphere's calls lie in [360, 830] nm.
+ */
+#ifndef ARCUS_DAYLIGHT_H
+#define ARCUS_DAYLIGHT_H
+
+#include "arcus_core.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct arcus_daylight_desc {
+  double site_height;          /* m, the observer's geometric height, 0..80 000            */
+  double ozone_du;             /* ozone column above sea level, Dobson units, 0..1000      */
+  double aerosol_depth_500;    /* the aerosol's vertical optical depth above the site at
+                                * 500 nm, 0..10                                            */
+  double angstrom_exponent;    /* τ(λ) = τ(500)·(λ/500 nm)^−α, −1..4                       */
+  double aerosol_scale_height; /* m, 100..20 000: density ∝ exp(−(h − site)/H)              */
+  double co2_ppm;              /* 0..10 000, in the air's King factor and index             */
+} arcus_daylight_desc;
+
+/* Fills desc with a clear mid-latitude day: sea level, 300 DU, τ(500) = 0.1, α = 1.3,
+ * H = 1200 m, 415 ppm. */
+ARCUS_API arcus_status arcus_daylight_desc_init(arcus_daylight_desc* desc);
+
+typedef struct arcus_optical_depths {
+  double rayleigh, ozone, aerosol;
+} arcus_optical_depths;
+
+/* The optical depths along the ray that leaves the site at apparent zenith angle
+ * apparent_zenith_deg (0 = straight up, 90 = the horizon) and bends with the air's index
+ * to the top of the atmosphere (86 km): the direct sun's transmittance is
+ * exp(−(rayleigh + ozone + aerosol)).  depths has count entries. */
+ARCUS_API arcus_status arcus_daylight_optical_depths(const arcus_daylight_desc* desc, double apparent_zenith_deg,
+                                                     size_t count, const double* wavelength_nm,
+                                                     arcus_optical_depths* depths);
+
+/* The sun's spectral irradiance above the atmosphere at 1 AU (W m⁻² nm⁻¹, ASTM G173-03):
+ * band_nm = 0 gives the table's value at each wavelength (linear between its points),
+ * band_nm > 0 the mean over [λ − band/2, λ + band/2].  The table spans 300–1000 nm. */
+ARCUS_API arcus_status arcus_daylight_solar_irradiance(size_t count, const double* wavelength_nm, double band_nm,
+                                                       double* irradiance);
+
+/* The sun's limb darkening I(μ)/I(1) at each (wavelength_nm[i], mu[i]), μ the cosine
+ * of the angle between the line of sight and the sun's surface normal (1 at the disc's
+ * centre, 0 at its limb); 300–1100 nm. */
+ARCUS_API arcus_status arcus_daylight_limb_darkening(size_t count, const double* wavelength_nm, const double* mu,
+                                                     double* ratio);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* ARCUS_DAYLIGHT_H */

@@ -1,0 +1,94 @@
+// The shared sun and sky's C API (include/arcus/arcus_daylight.h): host code, no context.
+#include <cmath>
+#include <string>
+
+#include "arcus/arcus_daylight.h"
+#include "core/call.h"
+#include "core/format.h"
+#include "sky/atmosphere.h"
+#include "sky/sun.h"
+
+using namespace arcus;
+using namespace arcus::api;
+
+namespace {
+
+// Throws unless value is finite and within [lo, hi], naming it.
+void require_within(double value, double lo, double hi, const std::string& name) {
+  require(std::isfinite(value) && value >= lo && value <= hi,
+          name + " must lie in [" + number(lo) + ", " + number(hi) + "], got " + number(value));
+}
+
+// Arrays of count values, each within [lo, hi].
+void require_array(size_t count, const double* values, double lo, double hi, const char* name) {
+  require(count == 0 || values, std::string(name) + " is NULL");
+  for (size_t i = 0; i < count; ++i)
+    require_within(values[i], lo, hi, std::string(name) + "[" + std::to_string(i) + "]");
+}
+
+sky::Atmosphere atmosphere_of(const arcus_daylight_desc* desc) {
+  require_pointer(desc, "desc");
+  require_within(desc->site_height, 0, 80000, "desc.site_height");
+  require_within(desc->ozone_du, 0, 1000, "desc.ozone_du");
+  require_within(desc->aerosol_depth_500, 0, 10, "desc.aerosol_depth_500");
+  require_within(desc->angstrom_exponent, -1, 4, "desc.angstrom_exponent");
+  require_within(desc->aerosol_scale_height, 100, 20000, "desc.aerosol_scale_height");
+  require_within(desc->co2_ppm, 0, 10000, "desc.co2_ppm");
+  sky::Atmosphere a;
+  a.site_height_m = desc->site_height;
+  a.ozone_du = desc->ozone_du;
+  a.aerosol_depth_500 = desc->aerosol_depth_500;
+  a.angstrom_exponent = desc->angstrom_exponent;
+  a.aerosol_scale_height_m = desc->aerosol_scale_height;
+  a.co2_ppm = desc->co2_ppm;
+  return a;
+}
+
+}  // namespace
+
+arcus_status arcus_daylight_desc_init(arcus_daylight_desc* desc) {
+  return without_context([&] {
+    require_pointer(desc, "desc");
+    const sky::Atmosphere a;
+    *desc = arcus_daylight_desc{a.site_height_m,     a.ozone_du, a.aerosol_depth_500, a.angstrom_exponent,
+                                a.aerosol_scale_height_m, a.co2_ppm};
+  });
+}
+
+arcus_status arcus_daylight_optical_depths(const arcus_daylight_desc* desc, double apparent_zenith_deg, size_t count,
+                                           const double* wavelength_nm, arcus_optical_depths* depths) {
+  return without_context([&] {
+    const sky::Atmosphere a = atmosphere_of(desc);
+    require_within(apparent_zenith_deg, 0, 90, "apparent_zenith_deg");
+    require_array(count, wavelength_nm, sky::kDaylightMinNm, sky::kDaylightMaxNm, "wavelength_nm");
+    require(count == 0 || depths, "depths is NULL");
+    const sky::SlantPath path(a, apparent_zenith_deg * M_PI / 180);
+    for (size_t i = 0; i < count; ++i) {
+      const sky::OpticalDepths d = path.depths(wavelength_nm[i]);
+      depths[i] = arcus_optical_depths{d.rayleigh, d.ozone, d.aerosol};
+    }
+  });
+}
+
+arcus_status arcus_daylight_solar_irradiance(size_t count, const double* wavelength_nm, double band_nm,
+                                             double* irradiance) {
+  return without_context([&] {
+    require_within(band_nm, 0, 100, "band_nm");
+    require_array(count, wavelength_nm, 300 + band_nm / 2, 1000 - band_nm / 2, "wavelength_nm");
+    require(count == 0 || irradiance, "irradiance is NULL");
+    for (size_t i = 0; i < count; ++i)
+      irradiance[i] = band_nm > 0 ? sky::solar_irradiance_band(wavelength_nm[i] - band_nm / 2,
+                                                               wavelength_nm[i] + band_nm / 2)
+                                  : sky::solar_irradiance(wavelength_nm[i]);
+  });
+}
+
+arcus_status arcus_daylight_limb_darkening(size_t count, const double* wavelength_nm, const double* mu,
+                                           double* ratio) {
+  return without_context([&] {
+    require_array(count, wavelength_nm, 300, 1100, "wavelength_nm");
+    require_array(count, mu, 0, 1, "mu");
+    require(count == 0 || ratio, "ratio is NULL");
+    for (size_t i = 0; i < count; ++i) ratio[i] = sky::limb_darkening(wavelength_nm[i], mu[i]);
+  });
+}
