@@ -28,10 +28,12 @@ typedef struct arcus_daylight_desc {
   double angstrom_exponent;    /* τ(λ) = τ(500)·(λ/500 nm)^−α, −1..4                       */
   double aerosol_scale_height; /* m, 100..20 000: density ∝ exp(−(h − site)/H)              */
   double co2_ppm;              /* 0..10 000, in the air's King factor and index             */
+  double aerosol_albedo;       /* its single-scattering albedo, 0..1                         */
+  double aerosol_asymmetry;    /* g of its Henyey–Greenstein phase function, −0.99..0.99     */
 } arcus_daylight_desc;
 
 /* Fills desc with a clear mid-latitude day: sea level, 300 DU, τ(500) = 0.1, α = 1.3,
- * H = 1200 m, 415 ppm. */
+ * H = 1200 m, 415 ppm, albedo 0.95, g = 0.7. */
 ARCUS_API arcus_status arcus_daylight_desc_init(arcus_daylight_desc* desc);
 
 typedef struct arcus_optical_depths {
@@ -45,6 +47,19 @@ typedef struct arcus_optical_depths {
 ARCUS_API arcus_status arcus_daylight_optical_depths(const arcus_daylight_desc* desc, double apparent_zenith_deg,
                                                      size_t count, const double* wavelength_nm,
                                                      arcus_optical_depths* depths);
+
+/* The clear sky's radiance by single scattering (Rayleigh and aerosol), per unit of the
+ * sun's irradiance above the air (sr⁻¹; times arcus_daylight_solar_irradiance it is
+ * W m⁻² nm⁻¹ sr⁻¹), seen from the site along each of direction_count directions
+ * (view_zenith_deg 0..180, view_azimuth_deg counted from the sun's), the sun at
+ * sun_zenith_deg (0..120: beyond 90 it is below the horizon and lights only the air
+ * above Earth's shadow).  Straight paths (the sky's are not refracted) to 86 km or the
+ * ground; light scattered more than once is left out (it adds ~10–30 % at noon).
+ * radiance[d * wavelength_count + k] for direction d and wavelength k (360–830 nm). */
+ARCUS_API arcus_status arcus_daylight_sky_radiance(const arcus_daylight_desc* desc, double sun_zenith_deg,
+                                                   size_t direction_count, const double* view_zenith_deg,
+                                                   const double* view_azimuth_deg, size_t wavelength_count,
+                                                   const double* wavelength_nm, double* radiance);
 
 /* The sun's spectral irradiance above the atmosphere at 1 AU (W m⁻² nm⁻¹, ASTM G173-03):
  * band_nm = 0 gives the table's value at each wavelength (linear between its points),

@@ -1,11 +1,13 @@
 // The shared sun and sky's C API (include/arcus/arcus_daylight.h): host code, no context.
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "arcus/arcus_daylight.h"
 #include "core/call.h"
 #include "core/format.h"
 #include "sky/atmosphere.h"
+#include "sky/scattering.h"
 #include "sky/sun.h"
 
 using namespace arcus;
@@ -34,6 +36,8 @@ sky::Atmosphere atmosphere_of(const arcus_daylight_desc* desc) {
   require_within(desc->angstrom_exponent, -1, 4, "desc.angstrom_exponent");
   require_within(desc->aerosol_scale_height, 100, 20000, "desc.aerosol_scale_height");
   require_within(desc->co2_ppm, 0, 10000, "desc.co2_ppm");
+  require_within(desc->aerosol_albedo, 0, 1, "desc.aerosol_albedo");
+  require_within(desc->aerosol_asymmetry, -0.99, 0.99, "desc.aerosol_asymmetry");
   sky::Atmosphere a;
   a.site_height_m = desc->site_height;
   a.ozone_du = desc->ozone_du;
@@ -41,6 +45,8 @@ sky::Atmosphere atmosphere_of(const arcus_daylight_desc* desc) {
   a.angstrom_exponent = desc->angstrom_exponent;
   a.aerosol_scale_height_m = desc->aerosol_scale_height;
   a.co2_ppm = desc->co2_ppm;
+  a.aerosol_albedo = desc->aerosol_albedo;
+  a.aerosol_asymmetry = desc->aerosol_asymmetry;
   return a;
 }
 
@@ -51,7 +57,7 @@ arcus_status arcus_daylight_desc_init(arcus_daylight_desc* desc) {
     require_pointer(desc, "desc");
     const sky::Atmosphere a;
     *desc = arcus_daylight_desc{a.site_height_m,     a.ozone_du, a.aerosol_depth_500, a.angstrom_exponent,
-                                a.aerosol_scale_height_m, a.co2_ppm};
+                                a.aerosol_scale_height_m, a.co2_ppm,          a.aerosol_albedo, a.aerosol_asymmetry};
   });
 }
 
@@ -67,6 +73,27 @@ arcus_status arcus_daylight_optical_depths(const arcus_daylight_desc* desc, doub
       const sky::OpticalDepths d = path.depths(wavelength_nm[i]);
       depths[i] = arcus_optical_depths{d.rayleigh, d.ozone, d.aerosol};
     }
+  });
+}
+
+arcus_status arcus_daylight_sky_radiance(const arcus_daylight_desc* desc, double sun_zenith_deg,
+                                         size_t direction_count, const double* view_zenith_deg,
+                                         const double* view_azimuth_deg, size_t wavelength_count,
+                                         const double* wavelength_nm, double* radiance) {
+  return without_context([&] {
+    const sky::Atmosphere a = atmosphere_of(desc);
+    require_within(sun_zenith_deg, 0, 120, "sun_zenith_deg");
+    require_array(direction_count, view_zenith_deg, 0, 180, "view_zenith_deg");
+    require_array(direction_count, view_azimuth_deg, -360, 360, "view_azimuth_deg");
+    require_array(wavelength_count, wavelength_nm, sky::kDaylightMinNm, sky::kDaylightMaxNm, "wavelength_nm");
+    require(direction_count == 0 || wavelength_count == 0 || radiance, "radiance is NULL");
+    // ~1 ms a direction: bounded so that one call cannot run for hours.
+    require(direction_count <= 1000000, "direction_count is " + std::to_string(direction_count) + ", at most 1000000");
+    const sky::SingleScatteringSky sky(a, sun_zenith_deg * M_PI / 180);
+    const std::vector<double> nm(wavelength_nm, wavelength_nm + wavelength_count);
+    for (size_t d = 0; d < direction_count; ++d)
+      sky.radiance(view_zenith_deg[d] * M_PI / 180, view_azimuth_deg[d] * M_PI / 180, nm,
+                   radiance + d * wavelength_count);
   });
 }
 

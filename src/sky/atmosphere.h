@@ -14,6 +14,8 @@ struct Atmosphere {
   double aerosol_depth_500 = 0.1;       // the aerosol's vertical optical depth above the site, 500 nm
   double angstrom_exponent = 1.3;       // τ_a(λ) = τ_a(500)·(λ/500)^−α (Ångström 1929)
   double aerosol_scale_height_m = 1200; // the aerosol's number density falls as exp(−(h − site)/H)
+  double aerosol_albedo = 0.95;         // its single-scattering albedo (the rest it absorbs)
+  double aerosol_asymmetry = 0.7;       // g of its Henyey–Greenstein phase function
   double co2_ppm = 415;                 // in the air's King factor and index
 };
 

@@ -91,6 +91,16 @@ def test_band_means_of_the_spectrum_above_the_air_add_up_to_its_integral():
     assert bands.sum() * 10 == pytest.approx(integral, rel=1e-12)
 
 
+def test_the_sky_is_symmetric_about_the_suns_vertical_and_dark_in_earths_shadow():
+    # Determinism of the geometry: azimuths ±φ from the sun see the same air.
+    nm = [450.0, 650.0]
+    left = daylight.sky_radiance(nm, 60, [10, 45, 80], [35, 90, 150])
+    right = daylight.sky_radiance(nm, 60, [10, 45, 80], [-35, -90, -150])
+    np.testing.assert_allclose(left, right, rtol=1e-12)
+    assert np.all(daylight.sky_radiance(nm, 101, 0) == 0)  # the shadow's edge above 86 km
+    assert np.all(daylight.sky_radiance(nm, 95, 0) > 0)
+
+
 def test_limb_darkening_is_one_at_the_centre_and_falls_to_the_limb():
     mu = np.linspace(0, 1, 11)
     for nm in (400.0, 550.0, 700.0):
@@ -109,6 +119,9 @@ def test_limb_darkening_is_one_at_the_centre_and_falls_to_the_limb():
     (lambda: daylight.solar_irradiance([1200.0]), "wavelength_nm[0]"),
     (lambda: daylight.solar_irradiance([550.0], band=-1), "band_nm"),
     (lambda: daylight.limb_darkening(550.0, 1.5), "mu[0]"),
+    (lambda: daylight.sky_radiance([550.0], 130, 0), "sun_zenith_deg"),
+    (lambda: daylight.sky_radiance([550.0], 30, [0, 200]), "view_zenith_deg[1]"),
+    (lambda: daylight.sky_radiance([550.0], 30, 0, aerosol_asymmetry=1), "desc.aerosol_asymmetry"),
 ])
 def test_bad_input_is_refused_naming_the_parameter(call, message):
     with pytest.raises(arcus.ArgumentError, match=message.replace("[", r"\[").replace("]", r"\]")):

@@ -218,6 +218,8 @@ _PROTOTYPES = {
     "arcus_daylight_desc_init": (_status, [POINTER(DaylightDescStruct)]),
     "arcus_daylight_optical_depths": (_status, [POINTER(DaylightDescStruct), c_double, c_size_t, _dvec,
                                                 POINTER(OpticalDepthsStruct)]),
+    "arcus_daylight_sky_radiance": (_status, [POINTER(DaylightDescStruct), c_double, c_size_t, _dvec, _dvec, c_size_t,
+                                              _dvec, _dvec]),
     "arcus_daylight_solar_irradiance": (_status, [c_size_t, _dvec, c_double, _dvec]),
     "arcus_daylight_limb_darkening": (_status, [c_size_t, _dvec, _dvec, _dvec]),
     "arcus_translucency_dipole_get_terms": (_status, [POINTER(DipoleStruct), POINTER(DipoleTermsStruct)]),

@@ -259,7 +259,8 @@ class DaylightDescStruct(ctypes.Structure):
     """arcus_daylight_desc."""
 
     _fields_ = [("site_height", c_double), ("ozone_du", c_double), ("aerosol_depth_500", c_double),
-                ("angstrom_exponent", c_double), ("aerosol_scale_height", c_double), ("co2_ppm", c_double)]
+                ("angstrom_exponent", c_double), ("aerosol_scale_height", c_double), ("co2_ppm", c_double),
+                ("aerosol_albedo", c_double), ("aerosol_asymmetry", c_double)]
 
 
 class OpticalDepthsStruct(ctypes.Structure):

@@ -35,7 +35,7 @@ from ._errors import ArgumentError
 from ._lib import lib
 
 __all__ = ["Atmosphere", "OpticalDepths", "default_atmosphere", "optical_depths", "sun_transmittance",
-           "solar_irradiance", "limb_darkening"]
+           "sky_radiance", "solar_irradiance", "limb_darkening"]
 
 
 @dataclass(frozen=True)
@@ -50,6 +50,8 @@ class Atmosphere:
         angstrom_exponent: α in τ(λ) = τ(500)·(λ/500 nm)^−α.
         aerosol_scale_height: the aerosol's density falls as exp(−(h − site)/H) [m].
         co2_ppm: CO2 in the air's King factor and refractive index.
+        aerosol_albedo: the aerosol's single-scattering albedo (what it does not absorb).
+        aerosol_asymmetry: g of the aerosol's Henyey–Greenstein phase function.
     """
 
     site_height: float
@@ -58,6 +60,8 @@ class Atmosphere:
     angstrom_exponent: float
     aerosol_scale_height: float
     co2_ppm: float
+    aerosol_albedo: float
+    aerosol_asymmetry: float
 
     def _struct(self):
         return _lib.DaylightDescStruct(*(to_float(getattr(self, f.name), f.name) for f in fields(self)))
@@ -78,7 +82,8 @@ class OpticalDepths:
 
 
 def default_atmosphere():
-    """The library's clear day: sea level, 300 DU, τ(500) = 0.1, α = 1.3, H = 1200 m, 415 ppm."""
+    """The library's clear day: sea level, 300 DU, τ(500) = 0.1, α = 1.3, H = 1200 m, 415 ppm,
+    aerosol albedo 0.95 and g = 0.7."""
     desc = _lib.DaylightDescStruct()
     _lib.check(lib.arcus_daylight_desc_init(byref(desc)))
     return Atmosphere(*(getattr(desc, f.name) for f in fields(Atmosphere)))
@@ -120,6 +125,26 @@ def sun_transmittance(wavelength, apparent_zenith, atmosphere=None, **overrides)
     """The direct sun's transmittance exp(−τ) along the refracted path at
     ``apparent_zenith`` degrees (see :func:`optical_depths`)."""
     return np.exp(-optical_depths(wavelength, apparent_zenith, atmosphere, **overrides).total)
+
+
+def sky_radiance(wavelength, sun_zenith, view_zenith, view_azimuth=0.0, atmosphere=None, **overrides):
+    """The clear sky's radiance by single scattering per unit of the sun's irradiance
+    above the air [sr⁻¹] (times :func:`solar_irradiance` it is W m⁻² nm⁻¹ sr⁻¹): shape
+    (directions..., wavelengths), for the sun at ``sun_zenith`` degrees (up to 120:
+    twilight) and views at ``view_zenith`` and ``view_azimuth`` degrees (broadcast
+    against each other; the azimuth counted from the sun's).  Light scattered more than
+    once is left out; the paths are straight (see ``arcus_daylight.h``)."""
+    desc = _atmosphere(atmosphere, overrides)._struct()
+    wl, flat = _wavelengths(wavelength)
+    zenith, azimuth = np.broadcast_arrays(to_real_array(view_zenith, "view_zenith"),
+                                          to_real_array(view_azimuth, "view_azimuth"))
+    shape = zenith.shape
+    zenith, azimuth = np.ascontiguousarray(zenith.reshape(-1)), np.ascontiguousarray(azimuth.reshape(-1))
+    out = np.zeros(zenith.size * flat.size)
+    _lib.check(lib.arcus_daylight_sky_radiance(byref(desc), to_float(sun_zenith, "sun_zenith"), zenith.size,
+                                               _lib.ptr(zenith), _lib.ptr(azimuth), flat.size, _lib.ptr(flat),
+                                               _lib.ptr(out)))
+    return out.reshape(shape + wl.shape)
 
 
 def solar_irradiance(wavelength, band=0.0):

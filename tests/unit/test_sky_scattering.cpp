@@ -1,0 +1,138 @@
+// The clear sky by single scattering (src/sky/scattering.h) against closed forms:
+// Rayleigh-only air seen near the zenith is the plane-parallel single-scattering
+// radiance, whose integral over depth is exact for any vertical profile; Earth's
+// shadow darkens the zenith once the sun is 10.5° down (its shadow then lies above
+// 86 km); Henyey–Greenstein's phase is normalised with mean cosine g; and the zenith
+// reddens as the sun sets unless ozone's Chappuis band absorbs the long paths' orange
+// (Hulburt 1953, J. Opt. Soc. Am. 43, 113: why the twilight zenith stays blue).
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "sky/atmosphere.h"
+#include "sky/rayleigh.h"
+#include "sky/scattering.h"
+#include "sky/sun.h"
+#include "spectral/cie.h"
+
+namespace {
+
+using arcus::sky::Atmosphere;
+using arcus::sky::SingleScatteringSky;
+
+constexpr double kDeg = M_PI / 180;
+
+Atmosphere rayleigh_only() {
+  Atmosphere a;
+  a.ozone_du = 0;
+  a.aerosol_depth_500 = 0;
+  return a;
+}
+
+// L/E0 of a plane-parallel layer of optical depth tau seen from its bottom, the sun
+// at cosine mu_s, the view at mu_v: p/μv·e^{−τ/μv}·∫0^τ e^{−t(1/μs − 1/μv)} dt.
+double plane_parallel(double tau, double mu_s, double mu_v, double phase) {
+  const double k = 1 / mu_s - 1 / mu_v;
+  const double integral = std::fabs(k) < 1e-12 ? tau : (1 - std::exp(-tau * k)) / k;
+  return phase / mu_v * std::exp(-tau / mu_v) * integral;
+}
+
+TEST(SkyScattering, RayleighAirNearTheZenithIsThePlaneParallelClosedForm) {
+  // The sphere's curvature changes a path's air by ~(H/R)·tan²z: 1.3e-3 at 45°; the
+  // quadrature (128 and 64 points) adds < 1e-4.  Bound: 2e-3.
+  const Atmosphere a = rayleigh_only();
+  const std::vector<double> nm = {400, 550, 800};
+  double worst = 0;
+  for (const double sun_deg : {0.0, 30.0, 45.0}) {
+    const SingleScatteringSky sky(a, sun_deg * kDeg);
+    for (const double view_deg : {0.0, 20.0, 45.0}) {
+      for (const double azimuth_deg : {0.0, 90.0, 180.0}) {
+        double L[3];
+        sky.radiance(view_deg * kDeg, azimuth_deg * kDeg, nm, L);
+        const double cos_theta = std::cos(sun_deg * kDeg) * std::cos(view_deg * kDeg) +
+                                 std::sin(sun_deg * kDeg) * std::sin(view_deg * kDeg) * std::cos(azimuth_deg * kDeg);
+        for (size_t k = 0; k < nm.size(); ++k) {
+          const double tau = arcus::sky::vertical_depths(a, nm[k]).rayleigh;
+          const double expected = plane_parallel(tau, std::cos(sun_deg * kDeg), std::cos(view_deg * kDeg),
+                                                 arcus::sky::rayleigh_phase(cos_theta, nm[k], a.co2_ppm));
+          EXPECT_NEAR(L[k] / expected, 1, 2e-3) << sun_deg << " " << view_deg << " " << azimuth_deg << " " << nm[k];
+          worst = std::max(worst, std::fabs(L[k] / expected - 1));
+        }
+      }
+    }
+  }
+  std::printf("largest difference from the plane-parallel closed form: %.2e\n", worst);
+}
+
+TEST(SkyScattering, EarthsShadowDarkensTheZenithAtTenAndAHalfDegreesDown) {
+  // The shadow's edge above the site lies at R(1/cos δ − 1): 35 km at δ = 6°, 107 km
+  // at 10.5°, above the top.
+  const Atmosphere a;
+  const std::vector<double> nm = {550};
+  double six, ten_and_half;
+  SingleScatteringSky(a, 96 * kDeg).radiance(0, 0, nm, &six);
+  SingleScatteringSky(a, 100.5 * kDeg).radiance(0, 0, nm, &ten_and_half);
+  EXPECT_GT(six, 0);
+  EXPECT_EQ(ten_and_half, 0);
+}
+
+TEST(SkyScattering, HenyeyGreensteinIsNormalisedWithMeanCosineG) {
+  for (const double g : {0.0, 0.5, 0.8}) {
+    const int n = 200000;
+    double norm = 0, mean = 0;
+    for (int i = 0; i < n; ++i) {
+      const double mu = -1 + 2 * (i + 0.5) / n, p = arcus::sky::henyey_greenstein(mu, g) * 2 * M_PI * 2 / n;
+      norm += p;
+      mean += p * mu;
+    }
+    EXPECT_NEAR(norm, 1, 1e-6) << g;
+    EXPECT_NEAR(mean, g, 1e-6) << g;
+  }
+}
+
+// The zenith's CIE 1931 chromaticity (x, y) in sunlight above the air (ASTM G173), from
+// 10 nm samples over 360–830 nm.
+std::array<double, 2> zenith_chromaticity(const Atmosphere& a, double sun_elevation_deg) {
+  std::vector<double> nm;
+  for (double w = 365; w <= 825; w += 10) nm.push_back(w);
+  std::vector<double> L(nm.size());
+  SingleScatteringSky(a, (90 - sun_elevation_deg) * kDeg).radiance(0, 0, nm, L.data());
+  for (size_t k = 0; k < nm.size(); ++k) L[k] *= arcus::sky::solar_irradiance_band(nm[k] - 5, nm[k] + 5);
+  double xyz[3];
+  arcus::spectral::spectrum_to_xyz(nm.data(), L.data(), nm.size(), xyz);
+  const double sum = xyz[0] + xyz[1] + xyz[2];
+  return {xyz[0] / sum, xyz[1] / sum};
+}
+
+TEST(SkyScattering, TheZenithReddensAsTheSunSetsUnlessOzoneKeepsItBlue) {
+  // D65 white is (0.3127, 0.3290).  At noon the zenith is well on the blue side; the
+  // air alone then turns it yellow through sunset (the light that reaches it crossed
+  // ever longer, redder paths); with 300 DU of ozone, whose Chappuis band takes the
+  // orange from those paths, it stays blue throughout, as Hulburt computed.
+  constexpr double kWhiteX = 0.3127;
+  Atmosphere clear = rayleigh_only(), with_ozone = clear;
+  with_ozone.ozone_du = 300;
+  double previous_x = 0;
+  for (const double elevation : {60.0, 20.0, 10.0, 5.0, 2.0, 0.0, -2.0, -4.0, -6.0}) {
+    const auto c = zenith_chromaticity(clear, elevation), o = zenith_chromaticity(with_ozone, elevation);
+    std::printf("sun %+5.1f deg: zenith x, y = %.4f, %.4f without ozone; %.4f, %.4f with 300 DU\n", elevation, c[0],
+                c[1], o[0], o[1]);
+    if (elevation >= -2) {
+      EXPECT_GT(c[0], previous_x) << elevation;  // reddening down to 2° below
+      previous_x = c[0];
+    }
+    if (elevation == 60) {
+      EXPECT_LT(c[0], 0.26);
+      EXPECT_LT(c[1], 0.27);
+    }
+    if (elevation <= 0) {
+      EXPECT_GT(c[0], kWhiteX) << elevation;
+    }
+    EXPECT_LT(o[0], kWhiteX - 0.02) << elevation;
+  }
+}
+
+}  // namespace
