@@ -61,6 +61,23 @@ ARCUS_API arcus_status arcus_daylight_sky_radiance(const arcus_daylight_desc* de
                                                    const double* view_azimuth_deg, size_t wavelength_count,
                                                    const double* wavelength_nm, double* radiance);
 
+/* The same sky as an equirectangular panorama of width × height pixels (1..8192 each),
+ * 3 floats a pixel, top row first: a direction at azimuth a (from +z toward +x) and
+ * elevation e at column u = a/360°, row v = (90° − e)/180°, as arcus_rainbow_sky's
+ * sky_image takes it.  Linear sRGB of the radiance in W m⁻² nm⁻¹ sr⁻¹ (Y = 1 for a flat
+ * spectrum of 1) under ASTM G173-03's sun at (sun_zenith_deg, sun_azimuth_deg); 0 below
+ * the horizon.  Computed on a 1.5° × 3° grid and interpolated (about 1.5 s). */
+ARCUS_API arcus_status arcus_daylight_sky_image(const arcus_daylight_desc* desc, double sun_zenith_deg,
+                                                double sun_azimuth_deg, uint32_t width, uint32_t height, float* rgb);
+
+/* What falls on horizontal ground at the site, W m⁻² nm⁻¹ at each wavelength: the
+ * direct sun through its refracted path times cos z (sun_zenith_deg taken as apparent;
+ * 0 below the horizon) and the diffuse single-scattering sky, cosine-weighted over the
+ * upper hemisphere.  Either output may be NULL. */
+ARCUS_API arcus_status arcus_daylight_ground_irradiance(const arcus_daylight_desc* desc, double sun_zenith_deg,
+                                                        size_t count, const double* wavelength_nm, double* direct,
+                                                        double* diffuse);
+
 /* The sun's spectral irradiance above the atmosphere at 1 AU (W m⁻² nm⁻¹, ASTM G173-03):
  * band_nm = 0 gives the table's value at each wavelength (linear between its points),
  * band_nm > 0 the mean over [λ − band/2, λ + band/2].  The table spans 300–1000 nm. */

@@ -9,6 +9,13 @@
 
 namespace arcus::scene {
 
+void check_atmosphere_keys(const json::Node& node) {
+  node.expect_object({"site_height", "ozone_du", "aerosol_depth_500", "angstrom_exponent", "aerosol_scale_height",
+                      "co2_ppm", "aerosol_albedo", "aerosol_asymmetry"});
+  node.check_numbers({"site_height", "ozone_du", "aerosol_depth_500", "angstrom_exponent", "aerosol_scale_height",
+                      "co2_ppm", "aerosol_albedo", "aerosol_asymmetry"});
+}
+
 std::string parse_name(const json::Node& node) {
   const std::string name = node.string();
   const bool plain = !name.empty() && name != "." && name != ".." && std::all_of(name.begin(), name.end(), [](char c) {

@@ -19,6 +19,10 @@ constexpr uint32_t kMaxSide = 16384;
 // one (letters, digits, '_', '-', '.'; not "." or "..").
 std::string parse_name(const json::Node& node);
 
+// A scene's "atmosphere" (the shared sun and sky, arcus_daylight.h): an object of
+// arcus_daylight_desc's numbers, each optional; their ranges are the C API's to check.
+void check_atmosphere_keys(const json::Node& node);
+
 // A non-zero direction, normalized.
 Vec3 parse_direction(const json::Node& node);
 

@@ -1,4 +1,5 @@
 // The shared sun and sky's C API (include/arcus/arcus_daylight.h): host code, no context.
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -68,6 +69,7 @@ arcus_status arcus_daylight_optical_depths(const arcus_daylight_desc* desc, doub
     require_within(apparent_zenith_deg, 0, 90, "apparent_zenith_deg");
     require_array(count, wavelength_nm, sky::kDaylightMinNm, sky::kDaylightMaxNm, "wavelength_nm");
     require(count == 0 || depths, "depths is NULL");
+    if (count == 0) return;  // what a caller checking its desc asks
     const sky::SlantPath path(a, apparent_zenith_deg * M_PI / 180);
     for (size_t i = 0; i < count; ++i) {
       const sky::OpticalDepths d = path.depths(wavelength_nm[i]);
@@ -94,6 +96,35 @@ arcus_status arcus_daylight_sky_radiance(const arcus_daylight_desc* desc, double
     for (size_t d = 0; d < direction_count; ++d)
       sky.radiance(view_zenith_deg[d] * M_PI / 180, view_azimuth_deg[d] * M_PI / 180, nm,
                    radiance + d * wavelength_count);
+  });
+}
+
+arcus_status arcus_daylight_sky_image(const arcus_daylight_desc* desc, double sun_zenith_deg, double sun_azimuth_deg,
+                                      uint32_t width, uint32_t height, float* rgb) {
+  return without_context([&] {
+    const sky::Atmosphere a = atmosphere_of(desc);
+    require_within(sun_zenith_deg, 0, 120, "sun_zenith_deg");
+    require_within(sun_azimuth_deg, -360, 360, "sun_azimuth_deg");
+    require(width >= 1 && width <= 8192 && height >= 1 && height <= 8192,
+            "width and height must be 1 to 8192, got " + std::to_string(width) + " × " + std::to_string(height));
+    require_pointer(rgb, "rgb");
+    const std::vector<float> image =
+        sky::sky_panorama(a, sun_zenith_deg * M_PI / 180, sun_azimuth_deg * M_PI / 180, int(width), int(height));
+    std::copy(image.begin(), image.end(), rgb);
+  });
+}
+
+arcus_status arcus_daylight_ground_irradiance(const arcus_daylight_desc* desc, double sun_zenith_deg, size_t count,
+                                              const double* wavelength_nm, double* direct, double* diffuse) {
+  return without_context([&] {
+    const sky::Atmosphere a = atmosphere_of(desc);
+    require_within(sun_zenith_deg, 0, 120, "sun_zenith_deg");
+    require_array(count, wavelength_nm, sky::kDaylightMinNm, sky::kDaylightMaxNm, "wavelength_nm");
+    const std::vector<double> nm(wavelength_nm, wavelength_nm + count);
+    std::vector<double> d(count), s(count);
+    sky::ground_irradiance(a, sun_zenith_deg * M_PI / 180, nm, d.data(), s.data());
+    if (direct) std::copy(d.begin(), d.end(), direct);
+    if (diffuse) std::copy(s.begin(), s.end(), diffuse);
   });
 }
 

@@ -1,11 +1,15 @@
 #include "sky/scattering.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "sky/paths.h"
 #include "sky/rayleigh.h"
+#include "sky/sun.h"
 #include "sky/us1976.h"
+#include "spectral/cie.h"
+#include "spectral/srgb.h"
 
 namespace arcus::sky {
 namespace {
@@ -129,6 +133,83 @@ void SingleScatteringSky::radiance(double view_zenith, double view_azimuth, cons
                          aerosol[k] * (to_sample.aerosol + sun.aerosol);
       const double scattering = rayleigh[k] * d.air * phase_r[k] + a.aerosol_albedo * aerosol[k] * d.aerosol * phase_a;
       radiance[k] += std::exp(-tau) * scattering * ds;
+    }
+  }
+}
+
+std::vector<float> sky_panorama(const Atmosphere& atmosphere, double sun_zenith, double sun_azimuth, int width,
+                                int height) {
+  // 47 bands of 10 nm over 360–830 nm, each the sun's band mean above the air.
+  std::vector<double> nm, sun;
+  for (double w = kDaylightMinNm + 5; w < kDaylightMaxNm; w += 10) {
+    nm.push_back(w);
+    sun.push_back(solar_irradiance_band(w - 5, w + 5));
+  }
+  const SingleScatteringSky sky(atmosphere, sun_zenith);
+  constexpr double kZenithStep = 1.5 * M_PI / 180, kAzimuthStep = 3.0 * M_PI / 180;
+  const int rows = int(std::lround(0.5 * M_PI / kZenithStep)) + 1, columns = int(std::lround(M_PI / kAzimuthStep)) + 1;
+  std::vector<std::array<double, 3>> grid(size_t(rows) * columns);
+  std::vector<double> L(nm.size());
+  for (int i = 0; i < rows; ++i) {
+    for (int j = 0; j < columns; ++j) {
+      sky.radiance(std::min(i * kZenithStep, 0.5 * M_PI), j * kAzimuthStep, nm, L.data());
+      for (size_t k = 0; k < nm.size(); ++k) L[k] *= sun[k];
+      double xyz[3];
+      spectral::spectrum_to_xyz(nm.data(), L.data(), nm.size(), xyz);
+      grid[size_t(i) * columns + j] = {xyz[0], xyz[1], xyz[2]};
+    }
+  }
+  std::vector<float> rgb(size_t(width) * height * 3, 0.0f);
+  for (int py = 0; py < height; ++py) {
+    const double elevation = 0.5 * M_PI - (py + 0.5) / height * M_PI;
+    if (elevation < 0) continue;
+    const double zi = std::min((0.5 * M_PI - elevation) / kZenithStep, rows - 1.0);
+    const int i = std::min(int(zi), rows - 2);
+    for (int px = 0; px < width; ++px) {
+      double relative = std::fabs(std::remainder((px + 0.5) / width * 2 * M_PI - sun_azimuth, 2 * M_PI));
+      const double aj = std::min(relative / kAzimuthStep, columns - 1.0);
+      const int j = std::min(int(aj), columns - 2);
+      const double fz = zi - i, fa = aj - j;
+      std::array<double, 3> xyz;
+      for (int c = 0; c < 3; ++c)
+        xyz[c] = (1 - fz) * ((1 - fa) * grid[size_t(i) * columns + j][c] + fa * grid[size_t(i) * columns + j + 1][c]) +
+                 fz * ((1 - fa) * grid[size_t(i + 1) * columns + j][c] + fa * grid[size_t(i + 1) * columns + j + 1][c]);
+      const std::array<double, 3> linear = spectral::xyz_to_linear_srgb(xyz);
+      for (int c = 0; c < 3; ++c) rgb[(size_t(py) * width + px) * 3 + c] = float(std::max(linear[c], 0.0));
+    }
+  }
+  return rgb;
+}
+
+void ground_irradiance(const Atmosphere& atmosphere, double sun_zenith, const std::vector<double>& wavelengths_nm,
+                       double* direct, double* diffuse) {
+  const size_t count = wavelengths_nm.size();
+  std::vector<double> sun(count);
+  for (size_t k = 0; k < count; ++k) sun[k] = solar_irradiance(wavelengths_nm[k]);
+  if (sun_zenith < 0.5 * M_PI) {
+    const SlantPath path(atmosphere, sun_zenith);
+    for (size_t k = 0; k < count; ++k)
+      direct[k] = sun[k] * std::exp(-path.depths(wavelengths_nm[k]).total()) * std::cos(sun_zenith);
+  } else {
+    std::fill(direct, direct + count, 0.0);
+  }
+  // ∫∫ L cos θ sin θ dθ dφ = ∫0^1 μ dμ ∫0^2π L dφ: Gauss–Legendre in μ, and the
+  // trapezoid rule in φ over [0, π] (its ends weighted half) doubled by the symmetry.
+  constexpr int kNodes = 16, kAzimuths = 24;
+  static const double kX[8] = {0.0950125098376374, 0.2816035507792589, 0.4580167776572274, 0.6178762444026438,
+                               0.7554044083550030, 0.8656312023878318, 0.9445750230732326, 0.9894009349916499};
+  static const double kW[8] = {0.1894506104550685, 0.1826034150449236, 0.1691565193950025, 0.1495959888165767,
+                               0.1246289712555339, 0.0951585116824928, 0.0622535239386479, 0.0271524594117541};
+  const SingleScatteringSky sky(atmosphere, sun_zenith);
+  std::fill(diffuse, diffuse + count, 0.0);
+  std::vector<double> L(count);
+  for (int n = 0; n < kNodes; ++n) {
+    const double x = n < 8 ? -kX[7 - n] : kX[n - 8], w = n < 8 ? kW[7 - n] : kW[n - 8];
+    const double mu = 0.5 * (x + 1), weight_mu = 0.5 * w * mu;
+    for (int j = 0; j <= kAzimuths; ++j) {
+      const double phi = M_PI * j / kAzimuths, weight_phi = 2 * M_PI / kAzimuths * (j == 0 || j == kAzimuths ? 0.5 : 1);
+      sky.radiance(std::acos(mu), phi, wavelengths_nm, L.data());
+      for (size_t k = 0; k < count; ++k) diffuse[k] += weight_mu * weight_phi * L[k] * sun[k];
     }
   }
 }

@@ -43,6 +43,24 @@ class SingleScatteringSky {
   std::vector<double> log_air_;  // ln N(h) on a 50 m grid, the standard's density
 };
 
+// The sky as an equirectangular panorama, `width` × `height` pixels of 3 floats, top
+// row first: a direction at azimuth a (from +z toward +x) and elevation e at column
+// u = a/360°, row v = (90° − e)/180° (the rainbow engine's sky images).  Linear sRGB of
+// the radiance in W m⁻² nm⁻¹ sr⁻¹ (Y = 1 for a flat spectrum of 1) under ASTM G173's
+// sun, the sun at (sun_zenith, sun_azimuth) radians; 0 below the horizon (the ground is
+// the caller's).  The radiance is computed on a 1.5° × 3° grid of zenith angle and
+// azimuth from the sun (the sky is symmetric about the sun's vertical) and
+// interpolated bilinearly in XYZ.
+std::vector<float> sky_panorama(const Atmosphere& atmosphere, double sun_zenith, double sun_azimuth, int width,
+                                int height);
+
+// What falls on a horizontal ground at the site (W m⁻² nm⁻¹) at each wavelength: the
+// direct sun through its refracted path (sun_zenith taken as apparent) times cos z, and
+// the single-scattering sky over the upper hemisphere weighted by cos θ (16-point
+// Gauss–Legendre in cos θ, 24 azimuths over the half the sky is symmetric in).
+void ground_irradiance(const Atmosphere& atmosphere, double sun_zenith, const std::vector<double>& wavelengths_nm,
+                       double* direct, double* diffuse);
+
 // Henyey–Greenstein's phase function per steradian.
 double henyey_greenstein(double cos_theta, double g);
 

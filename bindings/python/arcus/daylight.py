@@ -24,18 +24,18 @@ metres, angles in degrees; ``apparent_zenith`` is the direction the ray leaves t
 observer in (0 = up, 90 = the horizon), i.e. where the sun is seen, refraction included.
 """
 
-from ctypes import byref
+from ctypes import byref, c_float
 from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
 from . import _lib
-from ._args import to_float, to_real_array
+from ._args import to_float, to_int, to_real_array
 from ._errors import ArgumentError
 from ._lib import lib
 
 __all__ = ["Atmosphere", "OpticalDepths", "default_atmosphere", "optical_depths", "sun_transmittance",
-           "sky_radiance", "solar_irradiance", "limb_darkening"]
+           "sky_radiance", "sky_image", "ground_irradiance", "solar_irradiance", "limb_darkening"]
 
 
 @dataclass(frozen=True)
@@ -98,7 +98,11 @@ def _atmosphere(atmosphere, overrides):
     unknown = sorted(set(overrides) - names)
     if unknown:
         raise ArgumentError("unknown atmosphere parameter %s (known: %s)" % (unknown[0], ", ".join(sorted(names))))
-    return replace(atmosphere, **overrides)
+    atmosphere = replace(atmosphere, **overrides)
+    # The library checks the ranges (naming the field): asked for no wavelengths, it
+    # does nothing else.
+    _lib.check(lib.arcus_daylight_optical_depths(byref(atmosphere._struct()), 0.0, 0, None, None))
+    return atmosphere
 
 
 def _wavelengths(wavelength):
@@ -145,6 +149,33 @@ def sky_radiance(wavelength, sun_zenith, view_zenith, view_azimuth=0.0, atmosphe
                                                _lib.ptr(zenith), _lib.ptr(azimuth), flat.size, _lib.ptr(flat),
                                                _lib.ptr(out)))
     return out.reshape(shape + wl.shape)
+
+
+def sky_image(width, height, sun_zenith, sun_azimuth=0.0, atmosphere=None, **overrides):
+    """The sky as an equirectangular panorama (height, width, 3) float32 of linear sRGB
+    radiance [W m⁻² nm⁻¹ sr⁻¹; Y = 1 for a flat spectrum of 1] under ASTM G173's sun at
+    ``sun_zenith``, ``sun_azimuth`` degrees: column u = azimuth/360° (from +z toward +x),
+    row v = (90° − elevation)/180°, black below the horizon; what a rainbow scene's
+    ``sky_image`` takes."""
+    desc = _atmosphere(atmosphere, overrides)._struct()
+    width, height = to_int(width, "width", 1, 8192), to_int(height, "height", 1, 8192)
+    out = np.zeros((height, width, 3), dtype=np.float32)
+    _lib.check(lib.arcus_daylight_sky_image(byref(desc), to_float(sun_zenith, "sun_zenith"),
+                                            to_float(sun_azimuth, "sun_azimuth"), width, height,
+                                            _lib.ptr(out, c_float)))
+    return out
+
+
+def ground_irradiance(wavelength, sun_zenith, atmosphere=None, **overrides):
+    """(direct, diffuse): what falls on horizontal ground [W m⁻² nm⁻¹] at each
+    ``wavelength``, the sun at ``sun_zenith`` degrees (apparent): the direct sun through
+    its refracted path times cos z, and the single-scattering sky over the hemisphere."""
+    desc = _atmosphere(atmosphere, overrides)._struct()
+    wl, flat = _wavelengths(wavelength)
+    direct, diffuse = np.zeros(flat.size), np.zeros(flat.size)
+    _lib.check(lib.arcus_daylight_ground_irradiance(byref(desc), to_float(sun_zenith, "sun_zenith"), flat.size,
+                                                    _lib.ptr(flat), _lib.ptr(direct), _lib.ptr(diffuse)))
+    return direct.reshape(wl.shape), diffuse.reshape(wl.shape)
 
 
 def solar_irradiance(wavelength, band=0.0):
