@@ -71,8 +71,19 @@ void check_population(const Node& p) {
   if (auto v = p.find("method")) v->choice<int>({{"rays", 0}, {"mie", 1}});
 }
 
-// A background: a spectrum, or (the sky only) an image.
+// A background: a spectrum, the shared daylight (the ground with an albedo), or (the
+// sky only) an image.
 void check_background(const Node& b, bool image_allowed) {
+  if (b.find("type")) {
+    if (image_allowed) {
+      b.expect_object({"type"});
+    } else {
+      b.expect_object({"type", "albedo"});
+      b.check_numbers({"albedo"});
+    }
+    b.member("type").choice<int>({{"daylight", 0}});
+    return;
+  }
   if (image_allowed && b.find("image")) {
     b.expect_object({"image", "scale"});
     if (b.member("image").string().empty()) b.member("image").fail("expected a file name");
@@ -85,7 +96,8 @@ void check_background(const Node& b, bool image_allowed) {
 }
 
 void check_scene(const Node& root) {
-  root.expect_object({"name", "description", "image", "camera", "sun", "rain", "background", "tables"});
+  root.expect_object({"name", "description", "image", "camera", "sun", "atmosphere", "rain", "background", "tables"});
+  if (auto v = root.find("atmosphere")) scene::check_atmosphere_keys(*v);
   if (auto v = root.find("name")) scene::parse_name(*v);
   if (auto v = root.find("description")) v->string();
   if (auto img = root.find("image")) {
@@ -103,7 +115,7 @@ void check_scene(const Node& root) {
                         "irradiance", "airmass"});
     sun->check_numbers({"elevation_deg", "azimuth_deg", "diameter_deg", "temperature_k", "irradiance", "airmass"});
     sun->check_integers({{"samples", 4096}});
-    if (auto v = sun->find("spectrum")) v->choice<int>({{"blackbody", 0}, {"flat", 1}});
+    if (auto v = sun->find("spectrum")) v->choice<int>({{"blackbody", 0}, {"flat", 1}, {"daylight", 2}});
   }
   const Node rain = root.member("rain");
   rain.expect_object({"box_min", "box_max", "march_steps", "populations"});

@@ -163,6 +163,11 @@ def test_marshall_palmer_bins_hold_the_rain_rate_s_drops():
     (lambda s: s["rain"].update(box_min=[0, 0]), "box_min"),
     (lambda s: s["rain"]["populations"][0].update(shape="cube"), "shape"),
     (lambda s: s["rain"]["populations"][0].update(distribution="weibull", bins=3), "distribution"),
+    (lambda s: s.update(atmosphere={"ozone": 300}), "unknown atmosphere parameter ozone"),
+    (lambda s: s.update(atmosphere={"ozone_du": -5}), "desc.ozone_du"),
+    (lambda s: s["sun"].update(spectrum="daylight", irradiance=2), "remove irradiance"),
+    (lambda s: s["background"].update(ground={"type": "daylight", "albedo": 2}), "albedo"),
+    (lambda s: s["background"].update(sky={"type": "daylight", "albedo": 0.3}), "daylight background takes type only"),
 ])
 def test_bad_scenes_are_explained(ctx, tmp_path, change, words):
     scene = strip_scene([dict(DROPS[0])])
@@ -171,6 +176,17 @@ def test_bad_scenes_are_explained(ctx, tmp_path, change, words):
     with pytest.raises(arcus.Error) as err:
         sky.render(scene, cache_dir=tmp_path, context=ctx)
     assert words in str(err.value)
+
+
+def test_a_daylight_sun_is_the_suns_spectrum_through_the_air_at_its_elevation():
+    # The scene's sun is arcus.daylight's: ASTM G173 through the refracted path.  Lower,
+    # it is dimmer and redder (2° up: air mass 19).
+    wl = np.array([450.0, 550.0, 650.0])
+    high = sky.sun_spectrum({"elevation_deg": 40, "spectrum": "daylight"}, wl)
+    low = sky.sun_spectrum({"elevation_deg": 2, "spectrum": "daylight"}, wl)
+    expected = arcus.daylight.solar_irradiance(wl, band=100) * arcus.daylight.sun_transmittance(wl, 50)
+    np.testing.assert_allclose(high, expected, rtol=1e-12)
+    assert np.all(low < high) and low[0] / low[2] < 0.3 * high[0] / high[2]
 
 
 def test_bundled_scenes_parse():

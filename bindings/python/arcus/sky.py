@@ -20,14 +20,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _lib, _scene_file, sweep
+from . import _lib, _scene_file, daylight, sweep
 from ._args import to_path
 from ._errors import ArgumentError
 from .context import _check_progress, _owned_context
 from .image import read as read_image
+from .image import write as write_image
 from ._lib import lib
 
-__all__ = ["SkyImage", "VolumeTable", "load_scene", "populations", "volume_table", "sky_parameters", "render", "export",
+__all__ = ["SkyImage", "VolumeTable", "load_scene", "populations", "volume_table", "sky_parameters", "atmosphere_of",
+           "daylight_sky_image", "render", "export",
            "light_frame", "upright_rotation"]
 
 # Hansen & Travis (1974), eq. 2.30 with Bucholtz (1995): the Rayleigh optical depth of the
@@ -278,7 +280,7 @@ def _scene_dir(scene):
 def _sky_image(spec, base_dir):
     """A sky image, ``{"image": FILE, "scale": s}`` (FILE relative to the scene's folder):
     (absolute path, scale), or (None, 1.0) for a sky given as a spectrum."""
-    if not isinstance(spec, dict) or "image" not in spec:
+    if not isinstance(spec, dict) or "image" not in spec or "type" in spec:
         return None, 1.0
     unknown = set(spec) - {"image", "scale"}
     if unknown:
@@ -293,13 +295,37 @@ def _sky_image(spec, base_dir):
     return os.path.abspath(path), _number(spec, "scale", 1.0, low=0, where="background.sky")
 
 
-def _spectrum(spec, wl, where, default_radiance):
+def _daylight_kind(spec, where):
+    """True for a background {"type": "daylight"} (the shared sky, arcus.daylight)."""
+    if not isinstance(spec, dict) or "type" not in spec:
+        return False
+    if spec["type"] != "daylight":
+        raise ArgumentError("%s: 'type' must be daylight, got %r" % (where, spec["type"]))
+    allowed = {"type", "albedo"} if where == "background.ground" else {"type"}
+    unknown = set(spec) - allowed
+    if unknown:
+        raise ArgumentError("%s: a daylight background takes %s only, got %s"
+                            % (where, " and ".join(sorted(allowed)), ", ".join(sorted(unknown))))
+    return True
+
+
+def _spectrum(spec, wl, where, default_radiance, daylight_sun=None):
     """A background spectrum: {"spectrum": "flat"|"rayleigh", "radiance": R} (rayleigh:
-    λ^−4 scaled to mean R over the table's wavelengths)."""
+    λ^−4 scaled to mean R over the table's wavelengths), or the shared daylight
+    ({"type": "daylight"}): the sky is then an image (0 here), the ground a Lambertian
+    one of ``albedo`` (0.2) lit by the sun and the sky, ``daylight_sun`` =
+    (zenith, atmosphere)."""
     if spec is None:
         return np.zeros_like(wl)
     if not isinstance(spec, dict):
         raise ArgumentError("%s must be an object, got %r" % (where, spec))
+    if _daylight_kind(spec, where):
+        if where == "background.sky":
+            return np.zeros_like(wl)
+        albedo = _number(spec, "albedo", 0.2, 0, 1, where)
+        zenith, atmosphere = daylight_sun
+        direct, diffuse = daylight.ground_irradiance(wl, zenith, atmosphere)
+        return albedo / math.pi * (direct + diffuse)
     if "image" in spec:
         if where != "background.sky":
             raise ArgumentError("%s: only the sky may be an image" % where)
@@ -314,17 +340,40 @@ def _spectrum(spec, wl, where, default_radiance):
     raise ArgumentError("%s: 'spectrum' must be flat or rayleigh, got %r" % (where, kind))
 
 
-def sun_spectrum(sun, wl):
-    """The sun's irradiance at the rain [W/(m²·nm)]: a black body (``temperature_k``,
+def atmosphere_of(scene):
+    """The scene's ``atmosphere`` (fields of :class:`arcus.daylight.Atmosphere`, each
+    optional) over the library's clear day."""
+    spec = load_scene(scene).get("atmosphere", {})
+    if not isinstance(spec, dict):
+        raise ArgumentError("scene: 'atmosphere' must be an object")
+    try:
+        return daylight._atmosphere(None, dict(spec))
+    except ArgumentError as e:
+        raise ArgumentError("atmosphere: %s" % e) from None
+
+
+def sun_spectrum(sun, wl, atmosphere=None):
+    """The sun's irradiance at the rain [W/(m²·nm)]: the shared daylight (``"spectrum":
+    "daylight"``: ASTM G173's sun through the refracted path at its elevation, in the
+    scene's ``atmosphere``, as absolute W/(m²·nm)), or a black body (``temperature_k``,
     5778 K) or flat, scaled to mean ``irradiance`` over the wavelengths, then reddened by
     ``airmass`` atmospheres of Rayleigh scattering (Fig. 5.23(a)'s red sun)."""
     kind = sun.get("spectrum", "blackbody")
+    if kind == "daylight":
+        given = sorted({"temperature_k", "irradiance", "airmass"} & set(sun))
+        if given:
+            raise ArgumentError("sun: a daylight sun's spectrum and brightness are the atmosphere's; remove %s"
+                                % ", ".join(given))
+        elevation = _number(sun, "elevation_deg", 10.0, where="sun")
+        band = float(np.median(np.diff(wl))) if wl.size > 1 else 0.0
+        return daylight.solar_irradiance(wl, band=band) * daylight.sun_transmittance(
+            wl, 90.0 - elevation, atmosphere if atmosphere is not None else daylight.default_atmosphere())
     if kind == "blackbody":
         shape = planck(wl, _number(sun, "temperature_k", 5778.0, where="sun", positive=True))
     elif kind == "flat":
         shape = np.ones_like(wl)
     else:
-        raise ArgumentError("sun: 'spectrum' must be blackbody or flat, got %r" % (kind,))
+        raise ArgumentError("sun: 'spectrum' must be daylight, blackbody or flat, got %r" % (kind,))
     e = _number(sun, "irradiance", 1.0, low=0, where="sun") * shape / shape.mean()
     return e * np.exp(-_number(sun, "airmass", 0.0, low=0, where="sun") * rayleigh_depth(wl))
 
@@ -348,7 +397,9 @@ def sky_parameters(scene, wavelengths, *, width=None, height=None, sun_samples=N
     """The members of ``arcus_rainbow_sky`` for a scene at the table's wavelengths, as a
     dict of numbers, 3-vectors and spectra (what :func:`render` passes the library and
     :func:`export` writes for arcus_view); a sky image as ``sky_image_file`` (an absolute
-    path, or None) and ``sky_image_scale``.  Relative file names start from ``base_dir``
+    path, or None) and ``sky_image_scale``, or the shared daylight sky as
+    ``sky_image_daylight`` = (sun zenith, sun azimuth, Atmosphere), or None
+    (:func:`daylight_sky_image` makes its image).  Relative file names start from ``base_dir``
     (default: the scene file's folder)."""
     if base_dir is None:
         base_dir = _scene_dir(scene)
@@ -363,6 +414,11 @@ def sky_parameters(scene, wavelengths, *, width=None, height=None, sun_samples=N
     if not isinstance(background, dict):
         raise ArgumentError("scene: 'background' must be an object")
     sky_file, sky_scale = _sky_image(background.get("sky"), base_dir)
+    atmosphere = atmosphere_of(scene)
+    sun_zenith = 90.0 - _number(sun, "elevation_deg", 10.0, where="sun")
+    daylight_sky = None
+    if _daylight_kind(background.get("sky"), "background.sky"):
+        daylight_sky = (sun_zenith, _number(sun, "azimuth_deg", 180.0, where="sun"), atmosphere)
     return dict(
         width=int(width or _number(img, "width", 800, 1, 16384, "image")),
         height=int(height or _number(img, "height", 600, 1, 16384, "image")),
@@ -374,10 +430,12 @@ def sky_parameters(scene, wavelengths, *, width=None, height=None, sun_samples=N
         sun_azimuth_deg=_number(sun, "azimuth_deg", 180.0, where="sun"),
         sun_diameter_deg=_number(sun, "diameter_deg", 0.53, where="sun"),
         sun_samples=int(sun_samples or _number(sun, "samples", 16, 1, 4096, "sun")),
-        sun_irradiance=sun_spectrum(sun, wavelengths),
+        sun_irradiance=sun_spectrum(sun, wavelengths, atmosphere),
         sky_radiance=_spectrum(background.get("sky"), wavelengths, "background.sky", 0.0),
-        ground_radiance=_spectrum(background.get("ground"), wavelengths, "background.ground", 0.0),
+        ground_radiance=_spectrum(background.get("ground"), wavelengths, "background.ground", 0.0,
+                                  (min(sun_zenith, 120.0), atmosphere)),
         sky_image_file=sky_file,
+        sky_image_daylight=daylight_sky,
         sky_image_scale=sky_scale,
         rain_min=_vector(rain, "box_min", None, "rain"),
         rain_max=_vector(rain, "box_max", None, "rain"),
@@ -391,6 +449,13 @@ def _check_sun(scene):
     if isinstance(sun, dict) and _number(sun, "elevation_deg", 10.0, where="sun") < 0:
         raise ArgumentError("sun: the sun is below the horizon (elevation_deg %g): it lights no rain in front "
                             "of the camera, so no rainbow forms; raise it to 0 or above" % sun["elevation_deg"])
+
+
+def daylight_sky_image(sky_image_daylight):
+    """The daylight sky's panorama for ``sky_image_daylight`` (:func:`sky_parameters`):
+    512 × 256 pixels of linear sRGB radiance [W/(m²·sr·nm)], scale 1."""
+    zenith, azimuth, atmosphere = sky_image_daylight
+    return daylight.sky_image(512, 256, zenith, azimuth, atmosphere)
 
 
 def export(scene, path, *, table=None, width=None, height=None, sun_samples=None, march_steps=None, cache_dir=None,
@@ -409,6 +474,10 @@ def export(scene, path, *, table=None, width=None, height=None, sun_samples=None
               for k, v in sky_parameters(scene, table.wavelengths, width=width, height=height, sun_samples=sun_samples,
                                          march_steps=march_steps, base_dir=base_dir).items()}
     path = os.fspath(path)
+    sunlit = params.pop("sky_image_daylight")
+    if sunlit is not None:
+        params["sky_image_file"] = os.path.abspath(path + ".sky.exr")
+        write_image(params["sky_image_file"], daylight_sky_image(sunlit))
     beta_file = path + ".beta"
     np.ascontiguousarray(table.beta, dtype="<f8").tofile(beta_file)
     doc = {"arcus_rainbow_sky": 1, "description": scene.get("description", ""), "sky": params,
@@ -444,8 +513,13 @@ def render(scene, *, exr=None, png=None, table=None, width=None, height=None, su
     spectra = {k: np.ascontiguousarray(params.pop(k), dtype=float)
                for k in ("sun_irradiance", "sky_radiance", "ground_radiance")}
     sky_image = params.pop("sky_image_file")
+    sunlit = params.pop("sky_image_daylight")
+    if sunlit is not None:
+        sky_image = daylight_sky_image(sunlit)
+    elif sky_image is not None:
+        sky_image = read_image(sky_image)
     if sky_image is not None:
-        sky_image = np.ascontiguousarray(read_image(sky_image))
+        sky_image = np.ascontiguousarray(sky_image, dtype=np.float32)
         sky.sky_image = _lib.ptr(sky_image, c_float)
         sky.sky_image_height, sky.sky_image_width = sky_image.shape[:2]
     sky.sky_image_scale = params.pop("sky_image_scale")
