@@ -48,13 +48,14 @@ ARCUS_API arcus_status arcus_daylight_optical_depths(const arcus_daylight_desc* 
                                                      size_t count, const double* wavelength_nm,
                                                      arcus_optical_depths* depths);
 
-/* The clear sky's radiance by single scattering (Rayleigh and aerosol), per unit of the
+/* The clear sky's radiance (Rayleigh and aerosol; single scattering, and the light
+ * scattered more than once by Hillaire's 2020 approximation), per unit of the
  * sun's irradiance above the air (sr⁻¹; times arcus_daylight_solar_irradiance it is
  * W m⁻² nm⁻¹ sr⁻¹), seen from the site along each of direction_count directions
  * (view_zenith_deg 0..180, view_azimuth_deg counted from the sun's), the sun at
  * sun_zenith_deg (0..120: beyond 90 it is below the horizon and lights only the air
  * above Earth's shadow).  Straight paths (the sky's are not refracted) to 86 km or the
- * ground; light scattered more than once is left out (it adds ~10–30 % at noon).
+ * ground; the ground reflects nothing back.
  * radiance[d * wavelength_count + k] for direction d and wavelength k (360–830 nm). */
 ARCUS_API arcus_status arcus_daylight_sky_radiance(const arcus_daylight_desc* desc, double sun_zenith_deg,
                                                    size_t direction_count, const double* view_zenith_deg,
@@ -65,15 +66,15 @@ ARCUS_API arcus_status arcus_daylight_sky_radiance(const arcus_daylight_desc* de
  * 3 floats a pixel, top row first: a direction at azimuth a (from +z toward +x) and
  * elevation e at column u = a/360°, row v = (90° − e)/180°, as arcus_rainbow_sky's
  * sky_image takes it.  Linear sRGB of the radiance in W m⁻² nm⁻¹ sr⁻¹ (Y = 1 for a flat
- * spectrum of 1) under ASTM G173-03's sun at (sun_zenith_deg, sun_azimuth_deg); 0 below
- * the horizon.  Computed on a 1.5° × 3° grid and interpolated (about 1.5 s). */
+ * spectrum of 1) under ASTM G173-03's sun at (sun_zenith_deg, sun_azimuth_deg); below the
+ * horizon the horizon's.  Computed on a grid (61 elevations, dense at the horizon, by
+ * 61 azimuths) and interpolated (about 1 s). */
 ARCUS_API arcus_status arcus_daylight_sky_image(const arcus_daylight_desc* desc, double sun_zenith_deg,
                                                 double sun_azimuth_deg, uint32_t width, uint32_t height, float* rgb);
 
 /* What falls on horizontal ground at the site, W m⁻² nm⁻¹ at each wavelength: the
  * direct sun through its refracted path times cos z (sun_zenith_deg taken as apparent;
- * 0 below the horizon) and the diffuse single-scattering sky, cosine-weighted over the
- * upper hemisphere.  Either output may be NULL. */
+ * 0 below the horizon) and the diffuse sky, cosine-weighted over the upper hemisphere.  Either output may be NULL. */
 ARCUS_API arcus_status arcus_daylight_ground_irradiance(const arcus_daylight_desc* desc, double sun_zenith_deg,
                                                         size_t count, const double* wavelength_nm, double* direct,
                                                         double* diffuse);

@@ -97,7 +97,7 @@ void check_background(const Node& b, bool image_allowed) {
 
 void check_scene(const Node& root) {
   root.expect_object({"name", "description", "image", "camera", "sun", "atmosphere", "rain", "background", "tables"});
-  if (auto v = root.find("atmosphere")) scene::check_atmosphere_keys(*v);
+  if (auto v = root.find("atmosphere")) scene::parse_atmosphere(*v);
   if (auto v = root.find("name")) scene::parse_name(*v);
   if (auto v = root.find("description")) v->string();
   if (auto img = root.find("image")) {

@@ -9,11 +9,25 @@
 
 namespace arcus::scene {
 
-void check_atmosphere_keys(const json::Node& node) {
+sky::Atmosphere parse_atmosphere(const json::Node& node) {
   node.expect_object({"site_height", "ozone_du", "aerosol_depth_500", "angstrom_exponent", "aerosol_scale_height",
                       "co2_ppm", "aerosol_albedo", "aerosol_asymmetry"});
-  node.check_numbers({"site_height", "ozone_du", "aerosol_depth_500", "angstrom_exponent", "aerosol_scale_height",
-                      "co2_ppm", "aerosol_albedo", "aerosol_asymmetry"});
+  sky::Atmosphere a;
+  const std::pair<const char*, double*> fields[] = {
+      {"site_height", &a.site_height_m},         {"ozone_du", &a.ozone_du},
+      {"aerosol_depth_500", &a.aerosol_depth_500}, {"angstrom_exponent", &a.angstrom_exponent},
+      {"aerosol_scale_height", &a.aerosol_scale_height_m}, {"co2_ppm", &a.co2_ppm},
+      {"aerosol_albedo", &a.aerosol_albedo},     {"aerosol_asymmetry", &a.aerosol_asymmetry}};
+  for (const auto& [name, value] : fields)
+    if (auto v = node.find(name)) {
+      *value = v->number();
+      try {
+        sky::check_atmosphere(a, "");
+      } catch (const Error& e) {
+        v->fail(e.what());
+      }
+    }
+  return a;
 }
 
 std::string parse_name(const json::Node& node) {

@@ -9,6 +9,7 @@
 #include "arcus/arcus_scene.h"
 #include "geometry/vec3.h"
 #include "scene/json_reader.h"
+#include "sky/atmosphere.h"
 
 namespace arcus::scene {
 
@@ -20,8 +21,9 @@ constexpr uint32_t kMaxSide = 16384;
 std::string parse_name(const json::Node& node);
 
 // A scene's "atmosphere" (the shared sun and sky, arcus_daylight.h): an object of
-// arcus_daylight_desc's numbers, each optional; their ranges are the C API's to check.
-void check_atmosphere_keys(const json::Node& node);
+// arcus_daylight_desc's numbers, each optional over the clear day's, checked as the C
+// API checks them.
+sky::Atmosphere parse_atmosphere(const json::Node& node);
 
 // A non-zero direction, normalized.
 Vec3 parse_direction(const json::Node& node);

@@ -31,14 +31,6 @@ void require_array(size_t count, const double* values, double lo, double hi, con
 
 sky::Atmosphere atmosphere_of(const arcus_daylight_desc* desc) {
   require_pointer(desc, "desc");
-  require_within(desc->site_height, 0, 80000, "desc.site_height");
-  require_within(desc->ozone_du, 0, 1000, "desc.ozone_du");
-  require_within(desc->aerosol_depth_500, 0, 10, "desc.aerosol_depth_500");
-  require_within(desc->angstrom_exponent, -1, 4, "desc.angstrom_exponent");
-  require_within(desc->aerosol_scale_height, 100, 20000, "desc.aerosol_scale_height");
-  require_within(desc->co2_ppm, 0, 10000, "desc.co2_ppm");
-  require_within(desc->aerosol_albedo, 0, 1, "desc.aerosol_albedo");
-  require_within(desc->aerosol_asymmetry, -0.99, 0.99, "desc.aerosol_asymmetry");
   sky::Atmosphere a;
   a.site_height_m = desc->site_height;
   a.ozone_du = desc->ozone_du;
@@ -48,6 +40,7 @@ sky::Atmosphere atmosphere_of(const arcus_daylight_desc* desc) {
   a.co2_ppm = desc->co2_ppm;
   a.aerosol_albedo = desc->aerosol_albedo;
   a.aerosol_asymmetry = desc->aerosol_asymmetry;
+  sky::check_atmosphere(a, "desc.");
   return a;
 }
 
@@ -91,7 +84,7 @@ arcus_status arcus_daylight_sky_radiance(const arcus_daylight_desc* desc, double
     require(direction_count == 0 || wavelength_count == 0 || radiance, "radiance is NULL");
     // ~1 ms a direction: bounded so that one call cannot run for hours.
     require(direction_count <= 1000000, "direction_count is " + std::to_string(direction_count) + ", at most 1000000");
-    const sky::SingleScatteringSky sky(a, sun_zenith_deg * M_PI / 180);
+    const sky::ClearSky sky(a, sun_zenith_deg * M_PI / 180);
     const std::vector<double> nm(wavelength_nm, wavelength_nm + wavelength_count);
     for (size_t d = 0; d < direction_count; ++d)
       sky.radiance(view_zenith_deg[d] * M_PI / 180, view_azimuth_deg[d] * M_PI / 180, nm,

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/error.h"
+#include "core/format.h"
 #include "sky/paths.h"
 #include "sky/rayleigh.h"
 #include "sky/sun.h"
@@ -24,6 +26,23 @@ double ozone_shape(double h) {
 const double kPathEndsNm[2] = {kDaylightMinNm, kDaylightMaxNm};
 
 }  // namespace
+
+void check_atmosphere(const Atmosphere& a, const std::string& prefix) {
+  const struct {
+    const char* name;
+    double value, lo, hi;
+  } fields[] = {{"site_height", a.site_height_m, 0, 80000},
+                {"ozone_du", a.ozone_du, 0, 1000},
+                {"aerosol_depth_500", a.aerosol_depth_500, 0, 10},
+                {"angstrom_exponent", a.angstrom_exponent, -1, 4},
+                {"aerosol_scale_height", a.aerosol_scale_height_m, 100, 20000},
+                {"co2_ppm", a.co2_ppm, 0, 10000},
+                {"aerosol_albedo", a.aerosol_albedo, 0, 1},
+                {"aerosol_asymmetry", a.aerosol_asymmetry, -0.99, 0.99}};
+  for (const auto& f : fields)
+    require(std::isfinite(f.value) && f.value >= f.lo && f.value <= f.hi,
+            prefix + f.name + " must lie in [" + number(f.lo) + ", " + number(f.hi) + "], got " + number(f.value));
+}
 
 double ozone_profile(double height_m) {
   return kDobsonUnit * ozone_shape(height_m) / (0.5 * (kOzoneTop - kOzoneBottom));

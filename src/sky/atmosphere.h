@@ -6,6 +6,8 @@
 // bands are left out (the visible has no strong band below 686 nm).  Host code; nm, m.
 #pragma once
 
+#include <string>
+
 namespace arcus::sky {
 
 struct Atmosphere {
@@ -18,6 +20,12 @@ struct Atmosphere {
   double aerosol_asymmetry = 0.7;       // g of its Henyey–Greenstein phase function
   double co2_ppm = 415;                 // in the air's King factor and index
 };
+
+// Throws INVALID_ARGUMENT naming the first field out of its range (prefix + name): the
+// site 0–80 km, ozone 0–1000 DU, τ(500) 0–10, α −1..4, H 100 m–20 km, CO2 0–10⁴ ppm,
+// albedo 0–1, g −0.99..0.99.  Every reader of an atmosphere (the C API, scene files)
+// checks with it.
+void check_atmosphere(const Atmosphere& atmosphere, const std::string& prefix);
 
 // Optical depths of the three absorbers and scatterers.
 struct OpticalDepths {

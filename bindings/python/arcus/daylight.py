@@ -132,12 +132,13 @@ def sun_transmittance(wavelength, apparent_zenith, atmosphere=None, **overrides)
 
 
 def sky_radiance(wavelength, sun_zenith, view_zenith, view_azimuth=0.0, atmosphere=None, **overrides):
-    """The clear sky's radiance by single scattering per unit of the sun's irradiance
+    """The clear sky's radiance (single scattering and, by Hillaire's approximation, the
+    light scattered more than once) per unit of the sun's irradiance
     above the air [sr⁻¹] (times :func:`solar_irradiance` it is W m⁻² nm⁻¹ sr⁻¹): shape
     (directions..., wavelengths), for the sun at ``sun_zenith`` degrees (up to 120:
     twilight) and views at ``view_zenith`` and ``view_azimuth`` degrees (broadcast
-    against each other; the azimuth counted from the sun's).  Light scattered more than
-    once is left out; the paths are straight (see ``arcus_daylight.h``)."""
+    against each other; the azimuth counted from the sun's).  The paths are straight
+    (see ``arcus_daylight.h``)."""
     desc = _atmosphere(atmosphere, overrides)._struct()
     wl, flat = _wavelengths(wavelength)
     zenith, azimuth = np.broadcast_arrays(to_real_array(view_zenith, "view_zenith"),
@@ -155,7 +156,7 @@ def sky_image(width, height, sun_zenith, sun_azimuth=0.0, atmosphere=None, **ove
     """The sky as an equirectangular panorama (height, width, 3) float32 of linear sRGB
     radiance [W m⁻² nm⁻¹ sr⁻¹; Y = 1 for a flat spectrum of 1] under ASTM G173's sun at
     ``sun_zenith``, ``sun_azimuth`` degrees: column u = azimuth/360° (from +z toward +x),
-    row v = (90° − elevation)/180°, black below the horizon; what a rainbow scene's
+    row v = (90° − elevation)/180°, the horizon's below it; what a rainbow scene's
     ``sky_image`` takes."""
     desc = _atmosphere(atmosphere, overrides)._struct()
     width, height = to_int(width, "width", 1, 8192), to_int(height, "height", 1, 8192)
@@ -169,7 +170,7 @@ def sky_image(width, height, sun_zenith, sun_azimuth=0.0, atmosphere=None, **ove
 def ground_irradiance(wavelength, sun_zenith, atmosphere=None, **overrides):
     """(direct, diffuse): what falls on horizontal ground [W m⁻² nm⁻¹] at each
     ``wavelength``, the sun at ``sun_zenith`` degrees (apparent): the direct sun through
-    its refracted path times cos z, and the single-scattering sky over the hemisphere."""
+    its refracted path times cos z, and the sky over the hemisphere."""
     desc = _atmosphere(atmosphere, overrides)._struct()
     wl, flat = _wavelengths(wavelength)
     direct, diffuse = np.zeros(flat.size), np.zeros(flat.size)
