@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "curved/advance.h"
 #include "geometry/mesh.h"
+#include "sky/scattering.h"
 
 namespace arcus::render {
 namespace {
@@ -129,6 +130,18 @@ void read_images(RenderScene* scene, const std::string& path) {
     } catch (const Error& e) {
       fail(e.status(), path + ": $.sky.file: " + e.what());
     }
+  }
+  if (d.sky.kind == SkyKind::Daylight) {
+    // The renderer's panoramas put azimuth a at column −a/360° (image_io.h's equirect_uv),
+    // sky_panorama at +a/360°: the sky is symmetric about the sun's vertical, so the sun
+    // at −a gives the renderer's sky.
+    const LightDesc& sun = *std::find_if(d.lights.begin(), d.lights.end(), [](const LightDesc& l) { return l.daylight; });
+    image::Image& sky = scene->sky_image;
+    sky.width = 1024;
+    sky.height = 512;
+    sky.channels = {"R", "G", "B"};
+    sky.pixels = sky::sky_panorama(d.atmosphere, (90 - sun.elevation_deg) * M_PI / 180, -sun.azimuth_deg * M_PI / 180,
+                                   sky.width, sky.height);
   }
 }
 

@@ -1,5 +1,6 @@
 #include "render/scene_desc.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -10,6 +11,7 @@
 #include "core/error.h"
 #include "core/format.h"
 #include "curved/params.h"
+#include "sky/scattering.h"
 
 namespace arcus::render {
 namespace {
@@ -101,10 +103,26 @@ ObjectDesc parse_object(const Node& o, const std::map<std::string, int>& materia
   return d;
 }
 
-LightDesc parse_light(const Node& l) {
+LightDesc parse_light(const Node& l, const sky::Atmosphere& atmosphere) {
   LightDesc d;
-  d.kind = l.member("type").choice<LightKind>({{"sun", LightKind::Sun}, {"point", LightKind::Point}});
-  if (d.kind == LightKind::Sun) {
+  enum class Type { Sun, DaylightSun, Point };
+  const Type type = l.member("type").choice<Type>(
+      {{"sun", Type::Sun}, {"daylight_sun", Type::DaylightSun}, {"point", Type::Point}});
+  d.kind = type == Type::Point ? LightKind::Point : LightKind::Sun;
+  if (type == Type::DaylightSun) {
+    // The shared sun: its colour is what the atmosphere lets through at its elevation.
+    l.expect_object({"type", "elevation_deg", "azimuth_deg"});
+    d.daylight = true;
+    d.elevation_deg = l.member("elevation_deg").number();
+    if (!(d.elevation_deg >= 0 && d.elevation_deg <= 90))
+      l.member("elevation_deg").fail("expected 0 to 90 degrees (a daylight sun lights the scene from above the "
+                                     "horizon), got " + number(d.elevation_deg));
+    d.azimuth_deg = l.member("azimuth_deg").number();
+    const double e = d.elevation_deg * M_PI / 180, a = d.azimuth_deg * M_PI / 180;
+    d.direction = {std::sin(a) * std::cos(e), std::sin(e), std::cos(a) * std::cos(e)};
+    const auto rgb = sky::sun_linear_srgb(atmosphere, M_PI / 2 - e);
+    d.power = {rgb[0], rgb[1], rgb[2]};
+  } else if (d.kind == LightKind::Sun) {
     l.expect_object({"type", "direction", "irradiance"});
     d.direction = scene::parse_direction(l.member("direction"));
     d.power = colour(l.member("irradiance"));
@@ -119,7 +137,8 @@ LightDesc parse_light(const Node& l) {
 SkyDesc parse_sky(const Node& s, const std::string& base_dir) {
   SkyDesc d;
   d.kind = s.member("type").choice<SkyKind>(
-      {{"constant", SkyKind::Constant}, {"gradient", SkyKind::Gradient}, {"image", SkyKind::Image}});
+      {{"constant", SkyKind::Constant}, {"gradient", SkyKind::Gradient}, {"image", SkyKind::Image},
+       {"daylight", SkyKind::Daylight}});
   switch (d.kind) {
     case SkyKind::Constant:
       s.expect_object({"type", "color"});
@@ -133,6 +152,10 @@ SkyDesc parse_sky(const Node& s, const std::string& base_dir) {
     case SkyKind::Image:
       s.expect_object({"type", "file", "intensity"});
       d.file = resolved(s.member("file"), base_dir);
+      if (auto v = s.find("intensity")) d.intensity = positive(*v);
+      break;
+    case SkyKind::Daylight:
+      s.expect_object({"type", "intensity"});
       if (auto v = s.find("intensity")) d.intensity = positive(*v);
       break;
   }
@@ -180,7 +203,7 @@ RenderDesc parse_document(const Document& doc, const std::string& base_dir) {
   s.file = doc.file_name();
   const Node root = doc.root();
   root.expect_object({"name", "description", "field", "medium", "integrator", "bounds", "camera", "materials", "objects",
-                      "lights", "sky", "spectral", "photons", "techniques", "exposure"});
+                      "lights", "sky", "atmosphere", "spectral", "photons", "techniques", "exposure"});
   s.name = scene::parse_name(root.member("name"));
   if (auto v = root.find("description")) s.description = v->string();
   curved::parse_medium(curved::field_member(root), base_dir, &s.medium);
@@ -202,9 +225,15 @@ RenderDesc parse_document(const Document& doc, const std::string& base_dir) {
   }
   if (auto v = root.find("objects"))
     for (const Node& o : v->elements()) s.objects.push_back(parse_object(o, names, base_dir));
+  if (auto v = root.find("atmosphere")) s.atmosphere = scene::parse_atmosphere(*v);
   if (auto v = root.find("lights"))
-    for (const Node& l : v->elements()) s.lights.push_back(parse_light(l));
-  if (auto v = root.find("sky")) s.sky = parse_sky(*v, base_dir);
+    for (const Node& l : v->elements()) s.lights.push_back(parse_light(l, s.atmosphere));
+  if (auto v = root.find("sky")) {
+    s.sky = parse_sky(*v, base_dir);
+    if (s.sky.kind == SkyKind::Daylight &&
+        std::none_of(s.lights.begin(), s.lights.end(), [](const LightDesc& l) { return l.daylight; }))
+      v->fail("a daylight sky needs the sun that lights it: a {\"type\": \"daylight_sun\"} in $.lights");
+  }
   if (auto v = root.find("spectral")) s.wavelengths = parse_spectral(*v);
   if (auto v = root.find("photons")) s.photons = parse_photons(*v);
   if (auto v = root.find("techniques")) {

@@ -44,16 +44,20 @@ struct LightDesc {
   Vec3 direction{0, 1, 0};  // sun: unit vector toward it
   Vec3 position{0, 0, 0};   // point
   Vec3 power{1, 1, 1};      // sun: irradiance on a surface facing it; point: intensity (W/sr)
+  bool daylight = false;    // the shared sun ("daylight_sun"): its colour is the atmosphere's
+  double elevation_deg = 0, azimuth_deg = 0;  // daylight: where it is (azimuth from +z toward +x)
 };
 
-enum class SkyKind { Constant, Gradient, Image };
+// Daylight: the shared single-scattering sky (arcus_daylight.h) under the scene's
+// daylight sun, made into an image when the scene is loaded.
+enum class SkyKind { Constant, Gradient, Image, Daylight };
 
 struct SkyDesc {
   SkyKind kind = SkyKind::Constant;
   Vec3 color{0, 0, 0};                         // constant
   Vec3 horizon{0, 0, 0}, zenith{0, 0, 0};      // gradient, by the direction's height
   std::string file;                            // image: equirectangular, absolute path
-  double intensity = 1;                        // image: scale
+  double intensity = 1;                        // image, daylight: scale
 };
 
 struct PhotonDesc {
@@ -72,6 +76,7 @@ struct RenderDesc {
   std::vector<ObjectDesc> objects;
   std::vector<LightDesc> lights;
   SkyDesc sky;
+  sky::Atmosphere atmosphere;  // the daylight sun's and sky's air
   std::vector<double> wavelengths;  // spectral scenes: nm; empty: RGB
   PhotonDesc photons;
   uint32_t techniques = 0;  // the scene's default arcus_render techniques

@@ -19,7 +19,8 @@ Vec3 sky_radiance(const RenderScene& s, Vec3 d) {
       const double t = std::clamp(d.y, 0.0, 1.0);
       return (1 - t) * sky.horizon + t * sky.zenith;
     }
-    case SkyKind::Image: {
+    case SkyKind::Image:
+    case SkyKind::Daylight: {
       const auto uv = image::equirect_uv(d.x, d.y, d.z);
       const auto c = image::sample_bilinear(s.sky_image, uv[0], uv[1], true);
       return sky.intensity * Vec3{c[0], c[1], c[2]};

@@ -43,6 +43,35 @@ def test_a_bad_scene_raises_with_the_file_and_key(tmp_path):
     assert "$.camera" in str(e.value) and "bad.json" in str(e.value)
 
 
+@pytest.mark.parametrize("replace, key, words", [
+    ('"sky": {"type": "daylight"}', "$.sky", "needs the sun that lights it"),
+    ('"lights": [{"type": "daylight_sun", "elevation_deg": -3, "azimuth_deg": 0}], "sky": {"type": "daylight"}',
+     "$.lights[0].elevation_deg", "0 to 90"),
+    ('"lights": [{"type": "daylight_sun", "elevation_deg": 30, "azimuth_deg": 0}], "sky": {"type": "daylight"},'
+     ' "atmosphere": {"ozone_du": 5000}', "$.atmosphere.ozone_du", "ozone_du must lie in [0, 1000]"),
+])
+def test_a_bad_daylight_scene_names_its_key(tmp_path, replace, key, words):
+    path = small_scene(tmp_path)
+    path.write_text(path.read_text().replace('"sky": {"type": "constant", "color": [0, 0, 1]}', replace))
+    with pytest.raises(arcus.Error) as e:
+        arcus.render(path)
+    assert key in str(e.value) and words in str(e.value), str(e.value)
+
+
+def test_a_daylight_scene_is_lit_by_the_shared_sun_and_sky(tmp_path):
+    # The sun's colour is arcus.daylight's (ASTM G173 through the air at 30°): a grey
+    # sphere's lit side is warmer than the blue sky behind it, and the sky is bluer
+    # overhead than at the horizon.
+    path = small_scene(tmp_path)
+    path.write_text(path.read_text().replace(
+        '"sky": {"type": "constant", "color": [0, 0, 1]}',
+        '"lights": [{"type": "daylight_sun", "elevation_deg": 30, "azimuth_deg": 0}], "sky": {"type": "daylight"}')
+        .replace('"emission": [0.1, 0.2, 0.3]', '"emission": [0, 0, 0]'))
+    image = arcus.render(path).image
+    lit, sky = image[12, 16], image[2, 2]
+    assert lit[0] / lit[2] > 1.0 > sky[0] / sky[2]
+
+
 def test_unknown_techniques_and_symmetry_of_an_asymmetric_medium_are_refused(tmp_path):
     with pytest.raises(arcus.ArgumentError):
         arcus.render(small_scene(tmp_path), techniques=["warp"])
