@@ -72,6 +72,22 @@ def test_a_daylight_scene_is_lit_by_the_shared_sun_and_sky(tmp_path):
     assert lit[0] / lit[2] > 1.0 > sky[0] / sky[2]
 
 
+def test_the_daylight_sky_is_brightest_toward_its_sun(tmp_path):
+    # The sun 10° up at azimuth 90° (toward +x): looking at it through the aerosol's
+    # forward peak the sky is several times brighter than looking away (the renderer's
+    # panoramas run the other way round from the rainbow engine's: a mirrored sky would
+    # put the glow behind the camera).
+    def sky_toward(look_x):
+        path = tmp_path / ("look_%+d.json" % look_x)
+        path.write_text("""{"name": "look", "medium": {"type": "constant", "n": 1.0},
+          "integrator": {"method": "dp45", "rtol": 1e-12, "atol": 1e-6, "length": 100},
+          "camera": {"position": [0, 0, 0], "look_at": [%d, 0.18, 0], "vfov_deg": 10, "width": 8, "height": 8},
+          "lights": [{"type": "daylight_sun", "elevation_deg": 10, "azimuth_deg": 90}],
+          "sky": {"type": "daylight"}}""" % look_x)
+        return arcus.render(path).image.mean()
+    assert sky_toward(1) > 3 * sky_toward(-1)
+
+
 def test_unknown_techniques_and_symmetry_of_an_asymmetric_medium_are_refused(tmp_path):
     with pytest.raises(arcus.ArgumentError):
         arcus.render(small_scene(tmp_path), techniques=["warp"])
