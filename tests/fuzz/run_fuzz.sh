@@ -42,7 +42,8 @@ for target in "${targets[@]}"; do
   # The library's sources the target needs (beside the file reader every one uses), and
   # what it links.
   case $target in
-    scene) sources=(src/scene/json_reader.cpp src/scene/common_keys.cpp src/curved/scene_desc.cpp src/curved/params.cpp)
+    scene) sources=(src/scene/json_reader.cpp src/scene/common_keys.cpp src/curved/scene_desc.cpp src/curved/params.cpp
+                    src/sky/atmosphere.cpp src/sky/paths.cpp src/sky/rayleigh.cpp src/sky/us1976.cpp)
            libs=() ;;
     image) sources=(src/image/image_io.cpp src/spectral/srgb.cpp src/spectral/cie.cpp)
            read -r -a libs <<< "$(pkg-config --libs OpenImageIO)" ;;
@@ -53,7 +54,7 @@ for target in "${targets[@]}"; do
   echo "run_fuzz: building $bin with $CXX"
   # -fno-sanitize-recover: a UBSan report must stop the run, or libFuzzer never sees it.
   "$CXX" -std=c++17 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-    -I"$root/src" -I"$root/include" "$root/tests/fuzz/fuzz_$target.cpp" "${sources[@]/#/$root/}" "${libs[@]}" \
+    -I"$root/src" -I"$root/include" -I"$root/kernels" "$root/tests/fuzz/fuzz_$target.cpp" "${sources[@]/#/$root/}" "${libs[@]}" \
     -o "$bin"
 
   shopt -s nullglob
