@@ -17,10 +17,11 @@ san="-fsanitize=address,undefined -fno-omit-frame-pointer"
 # -O2 -g, 14 s at -O1 -g1) that was half of CI's time.
 # The test-only null engine is built here (and only here): its suite proves that an engine
 # plugs in alone (docs/adding-an-engine.md).
+# The physics and reference suites, which this script does not run (below), are not built.
 t0=$SECONDS
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
-  -DARCUS_BUILD_TESTS=ON -DARCUS_BUILD_BENCH=OFF -DARCUS_BUILD_APPS=ON \
+  -DARCUS_BUILD_TESTS=ON -DARCUS_BUILD_PHYSICS_TESTS=OFF -DARCUS_BUILD_BENCH=OFF -DARCUS_BUILD_APPS=ON \
   -DARCUS_WITH_NULL_ENGINE=ON \
   "-DCMAKE_C_FLAGS=$san" "-DCMAKE_CXX_FLAGS=$san" \
   "-DCMAKE_EXE_LINKER_FLAGS=$san" "-DCMAKE_SHARED_LINKER_FLAGS=$san" \
@@ -88,7 +89,7 @@ if reports "$logs/ctest-full.log"; then [ $ctest_rc -ne 0 ] || ctest_rc=1; fi
 # physics checks (marker heavy: their calls run instrumented in the modules' other tests).
 t0=$SECONDS
 LD_PRELOAD="$preload" ASAN_OPTIONS="$asan:detect_leaks=0" ARCUS_LIBRARY="$build/libarcus.so" \
-  python3 -m pytest -v --capture=sys -p no:cacheprovider -m "not end_to_end and not external_reference and not full_size and not heavy" tests/python 2>&1 | tee "$logs/pytest.log"
+  python3 -m pytest -v --durations=15 --capture=sys -p no:cacheprovider -m "not end_to_end and not external_reference and not full_size and not heavy" tests/python 2>&1 | tee "$logs/pytest.log"
 pytest_rc=$?
 pytest_s=$((SECONDS - t0))
 if reports "$logs/pytest.log"; then [ $pytest_rc -ne 0 ] || pytest_rc=1; fi

@@ -30,7 +30,7 @@ lap ctest
    -E '^TranslucencyEstimate\.|^Render\.(SmartStepSelectionFindsExactly|APathCached|CachedPaths|Symmetry|Undersampling)')
 scalar_rc=$?
 lap ctest-one-ray
-python3 -m pytest -q --durations=15 tests/python  # the slowest 15: where CI's time goes
+python3 -m pytest -q --durations=30 tests/python  # the slowest 30: where CI's time goes
 pytest_rc=$?
 lap pytest
 # `pip install .` into a new virtual environment; `arcus` from a folder outside the tree.

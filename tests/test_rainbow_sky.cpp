@@ -302,7 +302,10 @@ TEST_F(RainbowSky, SkyImageComesOutAsItWentInWhereNoRainIsInTheWay) {
       for (uint32_t px = 0; px < 16; ++px) {
         const double x = (2 * (px + 0.5) / 16 - 1) * half_w, y = (1 - 2 * (py + 0.5) / 12) * half_h;
         double d[3], n = 0;
-        for (int a = 0; a < 3; ++a) n += (d[a] = f[a] + x * r[a] + y * u_[a]) * d[a];
+        for (int a = 0; a < 3; ++a) {
+          d[a] = f[a] + x * r[a] + y * u_[a];
+          n += d[a] * d[a];
+        }
         for (double& da : d) da /= std::sqrt(n);
         double azimuth = std::atan2(d[0], d[2]);
         if (azimuth < 0) azimuth += 2 * M_PI;
