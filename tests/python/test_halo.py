@@ -14,6 +14,7 @@ import sys
 
 import numpy as np
 import pytest
+from scipy.spatial.transform import Rotation
 
 import arcus
 import arcus.halo as halo
@@ -66,7 +67,8 @@ def test_22_degree_halo_inner_edge(columns):
     adjacent side faces form 120° wedges, beyond twice the critical angle (2 × 49.8°),
     so nothing passes.  Each glint's direction is exact (all its rays leave parallel),
     so this is not a Monte Carlo estimate: between 1° and D the table must be zero,
-    and the tolerance is rounding (1e-9 of the p = 1 power)."""
+    apart from the samples within one step below D that the glints' linear deposit
+    reaches, and the tolerance is rounding (1e-9 of the p = 1 power)."""
     d = halo.halo_angle(NM)
     p1 = columns["per_term"][1]
     assert columns["per_term"].shape == (columns["max_bounces"] + 1, THETA.size)
@@ -74,7 +76,7 @@ def test_22_degree_halo_inner_edge(columns):
     hit = np.flatnonzero((p1 > 0) & (THETA > 1.0))
     edge = THETA[hit[0]]
     assert abs(edge - d) < 0.1, (edge, d)
-    below = (THETA > 1.0) & (THETA + STEP / 2 < d)
+    below = (THETA > 1.0) & (THETA + STEP < d)
     assert power[below].sum() <= 1e-9 * power.sum()
     assert power[THETA < 1.0].sum() > 0  # the parallel faces' light
     # the halo is brightest at its edge: the 2° above it hold more p = 1 light per
@@ -120,9 +122,11 @@ def test_energy_and_normalisation(ctx, columns):
     surface = 0.5 * np.linalg.norm(np.cross(vertices[triangles[:, 1]] - vertices[triangles[:, 0]],
                                             vertices[triangles[:, 2]] - vertices[triangles[:, 0]]), axis=1).sum()
     assert surface == pytest.approx(6 * 4 + 3 * math.sqrt(3), rel=1e-12)  # sides 1 × 4, ends 3√3/2 each
-    shadows = halo.projected_areas(vertices, triangles, halo.orientations(COLUMNS)[:, 2, :])
-    error = 3 * shadows.std() / math.sqrt(shadows.size)
-    assert t["intercepted"] / COLUMNS["size"] ** 2 == pytest.approx(surface / 4, abs=error)
+    # The shadow is a smooth function of the light's direction, which quasi-random
+    # orientations integrate with an error of ~(log N)²/N: measured within 1e-3 at 600
+    # for seeds 1-3, where independent draws would be within 3 standard errors, 1.8%.
+    # So this also checks that the symmetry wedge stands for every direction.
+    assert t["intercepted"] / COLUMNS["size"] ** 2 == pytest.approx(surface / 4, rel=3e-3)
     assert 0.98 < t["cast_area_ratio"] <= 1.0
     exact = halo.crystal_table(dict(COLUMNS, orientations=30), NM, THETA, edge_rays=False, context=ctx)
     assert exact["lost"] == pytest.approx(0, abs=1e-9)
@@ -144,7 +148,10 @@ def test_flat_face_glints_match_fresnel(ctx):
     the grid only enters through the area it assigns the face: within 2% per face on
     the default grid (O(1/grid) = 1.6%: the cells on the faces' boundaries) and 1/grid for
     their sum (the faces' reflectances differ, so a misplaced boundary shifts the sum too)."""
-    rotation = halo.orientations(dict(COLUMNS, orientations=1, seed=11))[0]
+    # a generic orientation whose four lit faces all face the light at least at cos 0.2
+    # (a face seen edge-on has too few cells for 2%)
+    axis = np.array([1.0, 2.0, 3.0]) / math.sqrt(14)
+    rotation = Rotation.from_rotvec(0.7 * axis).as_matrix()
     size = COLUMNS["size"]
     vertices, triangles = halo.hexagonal_prism(halo.SHAPES["column"])
     area_vectors = 0.5 * np.cross(vertices[triangles[:, 1]] - vertices[triangles[:, 0]],
@@ -222,6 +229,8 @@ def test_determinism_same_seed_same_table(ctx):
     c = halo.crystal_table(dict(spec, seed=6), NM, theta, max_bounces=2, context=ctx)
     assert not np.array_equal(a["phase"], c["phase"])
     assert np.array_equal(halo.orientations(spec), halo.orientations(dict(spec)))
+    given = halo.crystal_table(spec, NM, theta, max_bounces=2, rotations=halo.orientations(spec), context=ctx)
+    assert np.array_equal(given["phase"], a["phase"])  # the same rotations given explicitly
     # random orientations in 2-D: the 1-D table repeated over φ
     two_d = halo.crystal_table(spec, NM, theta, np.arange(0.0, 360.0, 30.0), max_bounces=2, context=ctx)
     assert two_d["phase"].shape == (12, theta.size)
@@ -297,6 +306,10 @@ def test_bad_input(ctx):
         halo.crystal_table(good, [500.0, 600.0], theta, context=ctx)
     with pytest.raises(arcus.ArgumentError, match="theta"):
         halo.crystal_table(good, NM, [0.0, 1.0, 3.0], context=ctx)  # not uniform
+    mirror = np.diag([1.0, 1.0, -1.0])
+    for rotations in (np.eye(3), np.zeros((0, 3, 3)), 2 * np.eye(3)[None], mirror[None], [[["a"] * 3] * 3]):
+        with pytest.raises(arcus.ArgumentError, match="rotations"):
+            halo.crystal_table(good, NM, theta, rotations=rotations, context=ctx)
     with pytest.raises(arcus.ArgumentError, match="theta"):
         halo.crystal_table(good, NM, [170.0, 190.0], context=ctx)
     with pytest.raises(arcus.ArgumentError, match="phi"):

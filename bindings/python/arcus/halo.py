@@ -16,8 +16,10 @@ Geometric optics without interference or diffraction (crystals of 10-100 µm are
 wavelengths across): each orientation is one cast of :func:`arcus.rainbow.phase_function`
 at a flat-faced :class:`arcus.rainbow.Mesh`, whose light leaves as glints (every ray of
 one sequence of faces in one direction); the glints of all orientations, weighted by
-their power, are histogrammed by direction into bins centred on the θ (and φ) samples
-asked for.  The 22° halo is the light of term p = 1 (two refractions, no internal
+their power, are shared linearly between the θ (and φ) samples asked for around them.
+The orientations are quasi-random (a scrambled Halton sequence) and, for randomly
+oriented crystals, confined to the prism's symmetry wedge, which leaves the table the
+same and makes it converge many times faster than independent draws.  The 22° halo is the light of term p = 1 (two refractions, no internal
 reflection: the library's p counts p − 1 internal reflections) through the 60° prisms
 of the side faces, the 46° halo p = 1 through the 90° prisms of a side and an end face.
 
@@ -57,7 +59,7 @@ SHAPES = {"column": 2.0, "plate": 0.2}
 ORIENTATIONS = ("random", "horizontal")
 #: A spec's keys and their defaults (``shape`` has none).
 SPEC_DEFAULTS = {"kind": "crystal", "size": 50e-6, "orientation": "random", "tilt_deg": 1.0,
-                 "sun_elevation_deg": 0.0, "orientations": 2000, "seed": 1}
+                 "sun_elevation_deg": 0.0, "orientations": 2000, "seed": 1, "first_orientation": 0}
 SPEC_KEYS = ("kind", "shape") + tuple(k for k in SPEC_DEFAULTS if k != "kind")
 #: Rays per side of each orientation's cast.  A glint's power is the cast area of its
 #: rays times the Fresnel products of its faces, the same for every ray of a flat face
@@ -196,14 +198,6 @@ def projected_areas(vertices, triangles, directions):
 # ---- orientations -------------------------------------------------------------------
 
 
-def _quaternion_matrices(q):
-    w, x, y, z = q.T
-    return np.stack([
-        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], axis=-1),
-        np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], axis=-1),
-        np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], axis=-1)], axis=1)
-
-
 def _axis_angle(axes, angles):
     """Rotations by ``angles`` about unit ``axes`` (K, 3), Rodrigues."""
     k = np.asarray(axes, dtype=float)
@@ -222,22 +216,59 @@ def light_frame(sun_elevation_deg):
     return np.array([[1.0, 0.0, 0.0], [0.0, math.cos(e), math.sin(e)], [0.0, -math.sin(e), math.cos(e)]])
 
 
+#: The hexagonal prism's symmetries (D6h, 24 of them, mirrors included) map light
+#: arriving from any direction to light arriving within one wedge of the crystal's frame:
+#: its azimuth about the axis (y) within 30° of a corner (x), its polar angle from the
+#: axis within 90°.  A mirror image of a crystal and its light scatters the same power
+#: through the same angle θ, so for randomly oriented crystals sampling this wedge is
+#: sampling every direction, 24 times more densely.
+WEDGE_DEG = 30.0
+#: Turning a prism by 60° about its axis leaves it unchanged: horizontal crystals (whose
+#: φ-tables mirrors would change) need spins within 60° only.
+SPIN_PERIOD_DEG = 60.0
+
+
+def _scrambled_halton(dimensions, first, count, seed):
+    """Points first .. first + count - 1 of a scrambled Halton sequence in [0, 1)^dimensions
+    (scipy.stats.qmc), the same for one seed: any run of them is spread evenly in every
+    dimension and pair, which the histogram of a few hundred orientations needs and
+    independent draws do not give, and successive runs fill in between each other."""
+    from scipy.stats import qmc
+    sequence = qmc.Halton(d=dimensions, scramble=True, seed=np.random.default_rng(seed))
+    sequence.fast_forward(first)
+    return sequence.random(count)
+
+
 def orientations(spec):
-    """The spec's crystal -> light-frame rotations, (N, 3, 3), from its ``seed``:
-    "random": uniform on SO(3) (normalised Gaussian quaternions); "horizontal": the
-    crystal's axis (its y) vertical, tilted by |N(0, tilt_deg)| toward a uniform azimuth,
-    turned uniformly about the axis, then seen from the light frame of the sun's
-    elevation."""
+    """The spec's crystal -> light-frame rotations, (N, 3, 3), quasi-random from its
+    ``seed``: "random": the light's direction in the crystal's frame (the rotation's last
+    row) spread evenly over the prism's symmetry wedge (:data:`WEDGE_DEG`; uniform on
+    SO(3) up to the prism's symmetries), a uniformly random turn about the light;
+    "horizontal": the crystal's axis (its y) vertical, tilted by |N(0, tilt_deg)|
+    toward a uniform azimuth, turned about the axis uniformly within
+    :data:`SPIN_PERIOD_DEG`, then seen from the light frame of the sun's elevation.
+    Both take the N points from ``first_orientation`` on of a scrambled Halton sequence,
+    so a table's noise falls faster than independent draws' 1/√N (as N^-0.66 for the
+    halo: bench/halo_bench.py), and tables that take successive runs of it (the sky's
+    wavelengths: :func:`arcus.sweep.phase_tables`) average as one of all their points."""
     spec = normalise_spec(spec)
-    rng = np.random.default_rng(spec["seed"])
     count = spec["orientations"]
+    u = _scrambled_halton(3, spec["first_orientation"], count, spec["seed"])
     if spec["orientation"] == "random":
-        q = rng.standard_normal((count, 4))
-        q /= np.linalg.norm(q, axis=1, keepdims=True)
-        return _quaternion_matrices(q)
-    spin = rng.uniform(0, 2 * math.pi, count)
-    tilt = np.abs(rng.normal(0.0, math.radians(spec["tilt_deg"]), count))
-    toward = rng.uniform(0, 2 * math.pi, count)
+        cos_polar, azimuth = u[:, 0], np.radians(WEDGE_DEG) * u[:, 1]
+        sin_polar = np.sqrt(1 - cos_polar ** 2)
+        light = np.stack([sin_polar * np.cos(azimuth), cos_polar, sin_polar * np.sin(azimuth)], axis=1)
+        # two more rows, a and b = light × a, so that a × b = light: a proper rotation
+        # whose last row is the light, then turned by u[:, 2] of a turn about it
+        a = np.cross(light, [0.0, 0.0, 1.0])  # light never lies along z: sin_polar·sin(azimuth) < 0.5
+        a /= np.linalg.norm(a, axis=1, keepdims=True)
+        b = np.cross(light, a)
+        turn = 2 * math.pi * u[:, 2:3]
+        return np.stack([np.cos(turn) * a + np.sin(turn) * b, -np.sin(turn) * a + np.cos(turn) * b, light], axis=1)
+    from scipy.special import erfinv
+    spin = np.radians(SPIN_PERIOD_DEG) * u[:, 0]
+    tilt = math.radians(spec["tilt_deg"]) * math.sqrt(2) * erfinv(u[:, 1])  # |N(0, σ)| by its inverse CDF
+    toward = 2 * math.pi * u[:, 2]
     about_axis = _axis_angle(np.tile([0.0, 1.0, 0.0], (count, 1)), spin)
     tilt_axes = np.stack([np.cos(toward), np.zeros(count), np.sin(toward)], axis=1)
     return light_frame(spec["sun_elevation_deg"]) @ _axis_angle(tilt_axes, tilt) @ about_axis
@@ -276,6 +307,7 @@ def normalise_spec(spec):
     out["sun_elevation_deg"] = elevation
     out["orientations"] = to_int(out["orientations"], "spec['orientations']", 1, 10 ** 8)
     out["seed"] = to_int(out["seed"], "spec['seed']", 0, 2 ** 63 - 1)
+    out["first_orientation"] = to_int(out["first_orientation"], "spec['first_orientation']", 0, 10 ** 12)
     return out
 
 
@@ -301,8 +333,28 @@ def _uniform(values, name, low, high, periodic=False):
     return a, a[0] - step / 2, step
 
 
+def _linear_deposit(x, first, step, count, periodic):
+    """The two samples (first + k·step) bracketing each x and their weights, as
+    [(k0, w0), (k1, w1)]: a glint's power shared linearly between them, a tent kernel
+    one step wide each side instead of a bin's box, so that where a glint falls inside
+    its bin no longer shows (the box's aliasing is a halo's rings of noise).  An axis
+    covers x within half a step of its first and last samples, whose outer halves
+    fold onto them (power stays in the table); a periodic axis (a whole circle of φ)
+    wraps round instead.  x that no sample covers gets k = -1 and weight 0."""
+    u = (np.asarray(x, dtype=float) - first) / step
+    k0 = np.floor(u).astype(np.int64)
+    w1 = u - k0
+    k1 = k0 + 1
+    if periodic:
+        return [(np.mod(k0, count), 1.0 - w1), (np.mod(k1, count), w1)]
+    covered = (u >= -0.5) & (u < count - 0.5)
+    k0, k1 = np.clip(k0, 0, count - 1), np.clip(k1, 0, count - 1)
+    return [(np.where(covered, k0, -1), np.where(covered, 1.0 - w1, 0.0)),
+            (np.where(covered, k1, -1), np.where(covered, w1, 0.0))]
+
+
 def crystal_table(spec, wavelength, theta, phi=None, *, grid=GRID, max_bounces=MAX_BOUNCES, edge_rays=True,
-                  context=None):
+                  rotations=None, context=None):
     """The orientation-averaged phase function and cross-sections of the ice crystals of
     ``spec`` at ``wavelength`` nm (one number, within ice's 199-1100 nm), in geometric
     optics (no diffraction, no interference).
@@ -313,11 +365,16 @@ def crystal_table(spec, wavelength, theta, phi=None, *, grid=GRID, max_bounces=M
             m; 50e-6), ``orientation`` ("random": uniform on SO(3); "horizontal": the axis
             vertical with a tilt of |N(0, tilt_deg)| toward a uniform azimuth and a
             uniform turn about the axis), ``tilt_deg`` (1.0), ``sun_elevation_deg`` (0.0;
-            horizontal crystals only), ``orientations`` (2000) and ``seed`` (1): the
-            orientations drawn from numpy's default_rng(seed), identical for one seed.
+            horizontal crystals only), ``orientations`` (2000), ``seed`` (1) and
+            ``first_orientation`` (0): the orientations, points first_orientation ..
+            first_orientation + orientations - 1 of a quasi-random sequence
+            (:func:`orientations`), identical for one seed.
         theta: uniformly spaced scattering angles [deg] (at least 2) on which the bins are
             centred (bin edges halfway between; the first and last bins half a step out,
-            clipped to [0, 180]).
+            clipped to [0, 180]).  Each glint's power is shared linearly between the
+            two samples around it (:func:`_linear_deposit`; in φ too), which smooths
+            the table by a tent one step wide each side: keep the step within the
+            sun's radius (0.27°), which smooths it as much in the sky anyway.
         phi: None: a 1-D table in θ (for horizontal crystals the average over azimuth);
             else uniformly spaced azimuths [deg] spanning at most 360°, bins centred on
             them (periodic): a 2-D table (F, T).  Randomly oriented crystals have no
@@ -329,6 +386,9 @@ def crystal_table(spec, wavelength, theta, phi=None, *, grid=GRID, max_bounces=M
             shares of the faces' light are right to about 1% at grid 64 and the books
             close; off, the cells along the silhouette are left out, which biases the
             terms' shares by a few % (p = 1 +2.6% for columns at grid 64).
+        rotations: (N, 3, 3) crystal -> light-frame rotations to average over instead
+            of the spec's (its ``orientations`` and ``seed`` are then not used), e.g.
+            another distribution of orientations.
         context: an arcus.Context, reused for every orientation (else a new one).
 
     Returns a dict:
@@ -369,7 +429,15 @@ def crystal_table(spec, wavelength, theta, phi=None, *, grid=GRID, max_bounces=M
     t_start = time.perf_counter()
 
     mesh = crystal_mesh(spec["shape"], spec["size"])
-    rotations = orientations(spec)
+    if rotations is None:
+        rotations = orientations(spec)
+    else:
+        rotations = to_real_array(rotations, "rotations")
+        if rotations.ndim != 3 or rotations.shape[1:] != (3, 3) or len(rotations) == 0:
+            raise ArgumentError("rotations must be an array of shape (N, 3, 3), got %s" % (rotations.shape,))
+        if not (np.allclose(rotations @ rotations.transpose(0, 2, 1), np.eye(3), atol=1e-9)
+                and np.all(np.linalg.det(rotations) > 0)):
+            raise ArgumentError("rotations must be proper rotation matrices (R Rᵀ = 1, det R = +1)")
     vertices, triangles = hexagonal_prism(SHAPES[spec["shape"]])
     # the light (+z) in each crystal's frame: Rᵀ z
     exact = projected_areas(vertices, triangles, rotations[:, 2, :]) * spec["size"] ** 2
@@ -400,22 +468,29 @@ def crystal_table(spec, wavelength, theta, phi=None, *, grid=GRID, max_bounces=M
     w = np.concatenate(powers) if powers else np.zeros(0)
     total = float(w.sum())
 
-    # bins: θ from +z, φ from +x toward +y
+    # θ from +z, φ from +x toward +y; each glint's power shared between the two samples
+    # that bracket it (in φ too, for 2-D tables of horizontal crystals)
     th = np.degrees(np.arccos(np.clip(d[:, 2], -1.0, 1.0)))
-    ti = np.floor((th - theta0) / dtheta).astype(np.int64)
     edges = np.clip(theta0 + dtheta * np.arange(theta.size + 1), 0.0, 180.0)
     ring = np.cos(np.radians(edges[:-1])) - np.cos(np.radians(edges[1:]))  # solid angle / Δφ
     terms_n = max_bounces + 1
+    th_cells = _linear_deposit(th, theta[0], dtheta, theta.size, periodic=False)
     if two_d and spec["orientation"] != "random":
         ph = np.degrees(np.arctan2(d[:, 1], d[:, 0]))
-        fi = np.floor(np.mod(ph - phi0, 360.0) / dphi).astype(np.int64)
-        ok = (ti >= 0) & (ti < theta.size) & (fi < phi.size)
-        flat = (p[ok] * phi.size + fi[ok]) * theta.size + ti[ok]
-        hist = np.bincount(flat, weights=w[ok], minlength=terms_n * phi.size * theta.size)
+        whole_circle = abs(phi.size * dphi - 360.0) < 1e-9
+        ph_cells = _linear_deposit(np.mod(ph - phi0, 360.0) + phi0, phi[0], dphi, phi.size, whole_circle)
+        hist = np.zeros(terms_n * phi.size * theta.size)
+        for ti, tw in th_cells:
+            for fi, fw in ph_cells:
+                ok = (ti >= 0) & (fi >= 0)
+                flat = (p[ok] * phi.size + fi[ok]) * theta.size + ti[ok]
+                hist += np.bincount(flat, weights=(w * tw * fw)[ok], minlength=hist.size)
         per_term = hist.reshape(terms_n, phi.size, theta.size) / (ring * math.radians(dphi))
     else:
-        ok = (ti >= 0) & (ti < theta.size)
-        hist = np.bincount(p[ok] * theta.size + ti[ok], weights=w[ok], minlength=terms_n * theta.size)
+        hist = np.zeros(terms_n * theta.size)
+        for ti, tw in th_cells:
+            ok = ti >= 0
+            hist += np.bincount(p[ok] * theta.size + ti[ok], weights=(w * tw)[ok], minlength=hist.size)
         per_term = hist.reshape(terms_n, theta.size) / (ring * 2 * math.pi)
         if two_d:  # random orientation: no preferred azimuth
             per_term = np.repeat(per_term[:, None, :], phi.size, axis=1)

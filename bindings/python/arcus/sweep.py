@@ -270,6 +270,17 @@ def _phase_task(task):
 _phase_task.what = "phase tables (one particle, one wavelength each)"  # names the progress bar
 
 
+def _at_wavelength(spec, j):
+    """The particle as the j-th wavelength's task casts it.  Crystals: the j-th run of
+    ``orientations`` of their quasi-random sequence, so that the wavelengths' tables
+    average over different orientations and a colour summed over them has the noise of
+    all of them together (arcus.halo.orientations); the rest are the same at every
+    wavelength."""
+    if spec["kind"] != "crystal":
+        return spec
+    return dict(spec, first_orientation=spec["first_orientation"] + j * spec["orientations"])
+
+
 def phase_tables(particles, wavelengths, theta, phi=None, *, grid=1000, max_bounces=3, cache_dir=None, client=None,
                  workers=None, progress=False, connect_timeout=CONNECT_TIMEOUT):
     """Phase functions and cross-sections of ``particles`` at each of ``wavelengths``
@@ -301,8 +312,9 @@ def phase_tables(particles, wavelengths, theta, phi=None, *, grid=1000, max_boun
     # A mesh's bytes key its tables too (the worker ignores them): an edited file is a new particle.
     files = [dict(file_sha256=_file_digest(s["path"])) if s["kind"] == "mesh" else {} for s in specs]
     shared = [_shared_theta_index(s, theta, phi) for s in specs]
-    tasks = [dict(common, particle=s, wavelength=float(w), theta=_theta_task(theta if k is None else SHARED_THETA), **f)
-             for s, f, k in zip(specs, files, shared) for w in wl]
+    tasks = [dict(common, particle=_at_wavelength(s, j), wavelength=float(w),
+                  theta=_theta_task(theta if k is None else SHARED_THETA), **f)
+             for s, f, k in zip(specs, files, shared) for j, w in enumerate(wl)]
     run = map_tasks(_phase_task, tasks, cache_dir=cache_dir, client=client, workers=workers, progress=progress,
                     connect_timeout=connect_timeout)
     n, count = len(specs), wl.size
