@@ -16,11 +16,7 @@ using namespace arcus::api;
 
 namespace {
 
-// Throws unless value is finite and within [lo, hi], naming it.
-void require_within(double value, double lo, double hi, const std::string& name) {
-  require(std::isfinite(value) && value >= lo && value <= hi,
-          name + " must lie in [" + number(lo) + ", " + number(hi) + "], got " + number(value));
-}
+using sky::require_within;
 
 // Arrays of count values, each within [lo, hi].
 void require_array(size_t count, const double* values, double lo, double hi, const char* name) {

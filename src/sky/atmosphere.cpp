@@ -39,9 +39,12 @@ void check_atmosphere(const Atmosphere& a, const std::string& prefix) {
                 {"co2_ppm", a.co2_ppm, 0, 10000},
                 {"aerosol_albedo", a.aerosol_albedo, 0, 1},
                 {"aerosol_asymmetry", a.aerosol_asymmetry, -0.99, 0.99}};
-  for (const auto& f : fields)
-    require(std::isfinite(f.value) && f.value >= f.lo && f.value <= f.hi,
-            prefix + f.name + " must lie in [" + number(f.lo) + ", " + number(f.hi) + "], got " + number(f.value));
+  for (const auto& f : fields) require_within(f.value, f.lo, f.hi, prefix + f.name);
+}
+
+void require_within(double value, double lo, double hi, const std::string& name) {
+  require(std::isfinite(value) && value >= lo && value <= hi,
+          name + " must lie in [" + number(lo) + ", " + number(hi) + "], got " + number(value));
 }
 
 double ozone_profile(double height_m) {

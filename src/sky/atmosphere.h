@@ -27,6 +27,10 @@ struct Atmosphere {
 // checks with it.
 void check_atmosphere(const Atmosphere& atmosphere, const std::string& prefix);
 
+// Throws an invalid-argument error unless value is finite and within [lo, hi], naming it:
+// "<name> must lie in [lo, hi], got value".
+void require_within(double value, double lo, double hi, const std::string& name);
+
 // Optical depths of the three absorbers and scatterers.
 struct OpticalDepths {
   double rayleigh = 0, ozone = 0, aerosol = 0;
