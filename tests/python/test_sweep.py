@@ -216,6 +216,7 @@ def test_failing_task_names_itself_and_the_rest_are_cached(tmp_path):
     assert len(list(tmp_path.glob("*.npz"))) == 3  # the Mie tables finished and are kept
 
 
+@pytest.mark.heavy  # four ocean renders, serial and on Dask: both paths run instrumented in smaller tests
 def test_ocean_grid_and_frames(client, repo):
     options = dict(width=12, height=8, photons=20000, k=40, steps=30, cache_dir=False)
     scene = repo / "scenes" / "ocean" / "fig5_8" / "c0_ad0_ay0.json"
