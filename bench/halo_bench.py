@@ -17,7 +17,6 @@ same reference.  Writes DIR/halo.md and DIR/halo.csv.
 """
 
 import argparse
-import csv
 import json
 import os
 import sys
@@ -32,9 +31,9 @@ sys.path.insert(0, os.path.join(ROOT, "bindings", "python"))
 import arcus  # noqa: E402
 import arcus.halo as halo  # noqa: E402
 from ocean_bench import machine  # noqa: E402  (one description of the machine for every benchmark)
+from profiles import over_the_sun, write_csv  # noqa: E402
 
 NM = 550.0
-SUN_RADIUS_DEG = 0.2665
 
 
 def scene_crystals():
@@ -55,14 +54,6 @@ def independent_rotations(count, seed):
         np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], axis=-1),
         np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], axis=-1),
         np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], axis=-1)], axis=1)
-
-
-def over_the_sun(theta, phase):
-    """The table averaged over the sun's disc: offsets x across it weighted by its chord."""
-    x = np.linspace(-SUN_RADIUS_DEG, SUN_RADIUS_DEG, 201)
-    w = np.sqrt(np.maximum(SUN_RADIUS_DEG ** 2 - x ** 2, 0.0))
-    w /= w.sum()
-    return sum(wi * np.interp(theta + xi, theta, phase) for xi, wi in zip(x, w))
 
 
 def main():
@@ -106,10 +97,7 @@ def main():
                          "wavelengths": k, "seconds": round(sum(s for _, s in runs[:k]), 2), "noise": rms,
                          "worst": worst})
             print("%d runs of %d: noise %.3f" % (k, per_wavelength, rms), flush=True)
-    with open(os.path.join(args.out, "halo.csv"), "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
+    write_csv(os.path.join(args.out, "halo.csv"), rows)
     m = machine()
     lines = ["# Halo: orientations against noise and time", "",
              "The `halo` scene's columns at %g nm (grid %d, P = %d, θ step 0.1°), averaged over the sun's disc; "

@@ -50,19 +50,22 @@ void check_population(const Node& p) {
     }
     p.member("density").number();
   } else {
-    enum class Kind { marshall_palmer, gamma };
-    const Kind kind = distribution->choice<Kind>({{"marshall_palmer", Kind::marshall_palmer}, {"gamma", Kind::gamma}});
+    enum class Kind { marshall_palmer, gamma, lognormal };
+    const Kind kind = distribution->choice<Kind>(
+        {{"marshall_palmer", Kind::marshall_palmer}, {"gamma", Kind::gamma}, {"lognormal", Kind::lognormal}});
     if (kind == Kind::marshall_palmer) {
       p.expect_object({"shape", "distribution", "rain_rate_mm_h", "diameter_range_mm", "bins", "method",
                        "nonspherical_above_mm"});
       p.member("rain_rate_mm_h").number();
       if (auto v = p.find("diameter_range_mm")) pair_of_numbers(*v);
     } else {
-      p.expect_object({"shape", "distribution", "mode_radius", "mu", "total_density", "radius_range", "bins", "method",
-                       "nonspherical_above_mm"});
-      p.member("mode_radius").number();
+      // Cloud droplets by their effective radius and variance (Hansen & Travis 1974), or
+      // a gamma by its mode and μ (arcus.sky says which combinations go together).
+      p.expect_object({"shape", "distribution", "effective_radius", "effective_variance", "mode_radius", "mu",
+                       "total_density", "radius_range", "bins", "method", "nonspherical_above_mm"});
+      if (kind == Kind::lognormal || !p.find("mode_radius")) p.member("effective_radius").number();
       p.member("total_density").number();
-      p.check_numbers({"mu"});
+      p.check_numbers({"effective_radius", "effective_variance", "mode_radius", "mu"});
       if (auto v = p.find("radius_range")) pair_of_numbers(*v);
     }
     p.check_integers({{"bins", 200}});

@@ -132,7 +132,7 @@ def steps(full):
                       ["render", "rainbow/" + name, "-o", "{out}/%s.png" % name, "--quiet"]
                       + ([] if full else ["--quick", "--width", "400", "--height", "300"] + tables), "sky",
                       docs_image="sky/%s.png" % name if name in ("double_bow", "supernumerary") else "",
-                      expected_seconds={"halo": 45.0, "sundogs": 30.0, "twinned": 26.0}.get(name, 3.0)))
+                      expected_seconds={"halo": 45.0, "sundogs": 30.0, "twinned": 26.0, "cloudbow": 10.0}.get(name, 3.0)))
     s.append(Step("Translucency", "Marble through the dipole",
                   "Thesis eq. 3.6–3.8: a marble torus 54 mm across (Jensen et al. 2001's coefficients) by the "
                   "hierarchical gather of Jensen & Buhler 2002, with a Fresnel-weighted highlight.",

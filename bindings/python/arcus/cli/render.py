@@ -171,13 +171,17 @@ def render_ocean(ctx, path, doc, args, exr, png, bar):
 
 def quick_rainbow(doc):
     """A rainbow scene's tables at preview settings: 9 wavelengths, casts of at most 300
-    rays a side, at most 100 crystal orientations."""
+    rays a side, at most 100 crystal orientations and 24 size bins (at 33 wavelengths
+    these leave a fog bow's luminance 3.6% RMS off a fine integration:
+    bench/fogbow_bench.py)."""
     tables = doc.setdefault("tables", {})
     tables["wavelengths"] = {"linspace": [380, 700, 9]}
     tables["grid"] = min(tables.get("grid", 1000), 300)
     for p in doc["rain"]["populations"]:
         if "orientations" in p:
             p["orientations"] = min(p["orientations"], 100)
+        if "bins" in p:
+            p["bins"] = min(p["bins"], 24)
 
 
 def render_rainbow(ctx, path, doc, args, exr, png, bar):
