@@ -29,7 +29,7 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, os.path.join(ROOT, "bindings", "python"))
 
 import arcus  # noqa: E402
-from arcus import mie, sky  # noqa: E402
+from arcus import _drop_sizes, mie, sky  # noqa: E402
 from ocean_bench import machine  # noqa: E402  (one description of the machine for every benchmark)
 from profiles import over_the_sun, write_csv  # noqa: E402
 
@@ -69,8 +69,8 @@ def profile(doc, bins, wavelengths):
     """(Y, x, y) over THETA, and the seconds its Mie tables took."""
     # The bins as arcus.sky.populations makes them, beyond the scene files' 200.
     population = doc["rain"]["populations"][0]
-    log_density, (lo, hi) = sky._cloud_droplets(population, population["distribution"], "cloudbow")
-    radii, weights = sky._gauss_bins(lo, hi, bins)
+    log_density, (lo, hi) = _drop_sizes.cloud_droplets(population, population["distribution"], "cloudbow")
+    radii, weights = _drop_sizes.gauss_bins(lo, hi, bins)
     log_n = log_density(radii)
     densities = np.exp(log_n - log_n.max()) * weights
     densities *= population["total_density"] / densities.sum()

@@ -23,6 +23,7 @@ import numpy as np
 
 from . import _lib, _scene_file, daylight, sweep
 from ._args import to_path
+from ._drop_sizes import cloud_droplets, gauss_bins
 from ._errors import ArgumentError
 from .context import _check_progress, _owned_context
 from .image import read as read_image
@@ -134,48 +135,6 @@ def upright_rotation(sun_elevation_deg, sun_azimuth_deg=180.0):
     return frame @ np.array([px, py, pz]).T  # R[r, c] = light_r · particle_c
 
 
-def _gauss_bins(lo, hi, count):
-    x, w = np.polynomial.legendre.leggauss(count)
-    return (lo + hi) / 2 + (hi - lo) / 2 * x, (hi - lo) / 2 * w
-
-
-def _cloud_droplets(p, dist, where):
-    """A cloud's or fog's droplets: (ln n(r) up to a constant, the default radius
-    range).  Either Hansen & Travis' (1974) forms by the effective radius a = <r³>/<r²>
-    and effective variance b: "gamma", n(r) ∝ r^((1−3b)/b) exp(−r/(ab)) (b < 1/3), or
-    "lognormal", n(r) ∝ exp(−(ln r − ln r_g)²/(2σ²))/r with σ² = ln(1 + b) and
-    r_g = a/(1 + b)^(5/2); their range holds all but 10⁻⁴ of the drops' cross-section at
-    either end (where the light comes from).  Or, as arcus 0.9 took it, a gamma by its
-    mode: n(r) ∝ r^μ exp(−μ r / mode_radius), over [mode/4, 3·mode]."""
-    from scipy import stats
-    if dist == "gamma" and "mode_radius" in p:
-        if "effective_radius" in p or "effective_variance" in p:
-            raise ArgumentError("%s: give a gamma distribution either mode_radius and mu or effective_radius and "
-                                "effective_variance, not both" % where)
-        mode = _number(p, "mode_radius", where=where, positive=True)
-        mu = _number(p, "mu", 6.0, 0, 100, where)
-        return (lambda r: mu * np.log(r) - mu * r / mode), (mode / 4, mode * 3)
-    if "mu" in p:
-        raise ArgumentError("%s: 'mu' goes with 'mode_radius' (a gamma by its mode)" % where)
-    a = _number(p, "effective_radius", where=where, positive=True)
-    if dist == "gamma":
-        b = _number(p, "effective_variance", 0.1, where=where)
-        if not 0 < b < 1 / 3:
-            raise ArgumentError("%s: a gamma's effective_variance must lie in (0, 1/3), got %r" % (where, b))
-        alpha = (1 - 3 * b) / b
-        log_density = lambda r: alpha * np.log(r) - r / (a * b)  # noqa: E731
-        cross_sections = stats.gamma(alpha + 3, scale=a * b)  # r² n(r)
-    else:
-        b = _number(p, "effective_variance", 0.1, where=where)
-        if not b > 0:
-            raise ArgumentError("%s: a lognormal's effective_variance must be positive, got %r" % (where, b))
-        sigma2 = math.log1p(b)
-        r_g = a / (1 + b) ** 2.5
-        log_density = lambda r: -np.log(r / r_g) ** 2 / (2 * sigma2) - np.log(r)  # noqa: E731
-        cross_sections = stats.lognorm(math.sqrt(sigma2), scale=r_g * math.exp(2 * sigma2))
-    return log_density, (float(cross_sections.ppf(1e-4)), float(cross_sections.isf(1e-4)))
-
-
 def populations(rain, sun_elevation_deg):
     """The rain's populations as (particle spec, number density [1/m³]) pairs: one size,
     or a size distribution in Gauss–Legendre bins (``bins``).  Specs are those of
@@ -215,14 +174,14 @@ def populations(rain, sun_elevation_deg):
                 rate = _number(p, "rain_rate_mm_h", where=where, positive=True)
                 lo, hi = p.get("diameter_range_mm", [0.5, 3.0])
                 lam = 4.1 * rate**-0.21
-                d_mm, w = _gauss_bins(float(lo), float(hi), bins)
+                d_mm, w = gauss_bins(float(lo), float(hi), bins)
                 dens = 8000.0 * np.exp(-lam * d_mm) * w
                 sizes = list(zip(d_mm * 1e-3, dens))
             elif dist in ("gamma", "lognormal"):
-                log_density, (lo, hi) = _cloud_droplets(p, dist, where)
+                log_density, (lo, hi) = cloud_droplets(p, dist, where)
                 lo, hi = p.get("radius_range", [lo, hi])
                 total = _number(p, "total_density", where=where, low=0)
-                r, w = _gauss_bins(float(lo), float(hi), bins)
+                r, w = gauss_bins(float(lo), float(hi), bins)
                 log_n = log_density(r)
                 n = np.exp(log_n - log_n.max()) * w  # narrow distributions: r^α beyond a double's range
                 sizes = list(zip(2 * r, total * n / n.sum()))
