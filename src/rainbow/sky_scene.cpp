@@ -134,11 +134,11 @@ void check_scene(const Node& root) {
     if (auto v = bg->find("ground")) check_background(*v, false);
   }
   if (auto tables = root.find("tables")) {
-    tables->expect_object({"wavelengths", "theta", "phi_step_deg", "grid", "max_bounces"});
+    tables->expect_object({"wavelengths", "theta", "phi_step_deg", "grid", "max_bounces", "band_samples"});
     if (auto v = tables->find("wavelengths")) sweep::check_axis(*v);
     if (auto v = tables->find("theta")) sweep::check_axis(*v);
     tables->check_numbers({"phi_step_deg"});
-    tables->check_integers({{"grid", 8192}, {"max_bounces", 15}});
+    tables->check_integers({{"grid", 8192}, {"max_bounces", 15}, {"band_samples", 64}});
   }
 }
 

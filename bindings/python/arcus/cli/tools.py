@@ -86,6 +86,7 @@ BENCHES = {
     "sky": (["bench/sky_bench.py", "--quick"], ["bench/sky_bench.py"]),
     "halo": (["bench/halo_bench.py", "--quick"], ["bench/halo_bench.py"]),
     "fogbow": (["bench/fogbow_bench.py", "--quick"], ["bench/fogbow_bench.py"]),
+    "spectral": (["bench/spectral_bench.py", "--quick"], ["bench/spectral_bench.py"]),
     "sweep": (["bench/sweep_bench.py", "--tasks", "4", "--grid", "150"], ["bench/sweep_bench.py"]),
     "translucency": (["bench/translucency_bench.py", "--quick"], ["bench/translucency_bench.py"]),
 }
