@@ -174,3 +174,25 @@ def test_meshes_from_memory_that_do_not_fit_the_scene_are_refused(tmp_path):
     for bad in ([cube], {"cube": CUBE_VERTICES}, {"": cube}, {1: cube}):
         with pytest.raises(arcus.ArgumentError, match="meshes"):
             arcus.render(cube_scene({"mesh": "cube"}), base_dir=tmp_path, meshes=bad)
+
+
+def test_the_spectral_sunset_shows_a_green_rim_several_pixels_thick():
+    # The bundled telephoto sunset (1.9" a pixel), rendered as a strip of 8 columns at
+    # its own scale.  Above the orange disc, rows where only the short wavelengths' image
+    # of the sun remains are green: G above R and B.  Their thickness is the angle
+    # between the upper edges of the green (~530 nm) and yellow (~580 nm) images: air's
+    # refractivity differs by ~0.35 % between them (Ciddor), times the ~2000" of
+    # refraction at the horizon, ≈ 7" ≈ 4 rows.  A renderer that traced every
+    # wavelength alike, or lost the dispersion, gives 0-1 rows; we ask for 3.
+    path = pathlib.Path(__file__).resolve().parents[2] / "scenes" / "sunset_spectral.json"
+    scene = json.loads(path.read_text())
+    scene["camera"]["width"] = 8
+    image = arcus.render(scene, base_dir=path.parent).image[:, 4, :].astype(float)
+    disc = np.flatnonzero(image[:, 0] > 0.5 * image[:, 0].max())
+    assert disc.size > 100, "the disc is not in the frame"
+    above = image[:disc.min()]
+    green = np.flatnonzero((above[:, 1] > above[:, 0]) & (above[:, 1] > above[:, 2])
+                           & (above[:, 1] > 0.05 * image[disc, 1].mean()))
+    assert green.size >= 3, above[-8:]
+    # the green band sits on the disc: contiguous, ending at its top
+    assert np.all(np.diff(green) == 1) and green.max() >= disc.min() - 2, (green, disc.min())
