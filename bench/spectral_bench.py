@@ -6,11 +6,12 @@
 For each bundled rainbow scene of spheres (single sizes and distributions, Mie and the
 rays method), the radial profile of the rain's single-scattered light — the scene's
 volume table β(θ, λ) lit by the scene's sun, through the CIE 1931 observer and averaged
-over the sun's disc — at the scene's own wavelengths against the same at every 2 nm
-(161 wavelengths over 380-700 nm).  Reports, over the scene's θ range (to 179.5°), the
-luminance Y's relative RMS and worst difference and the chromaticity x, y's worst
-relative difference; the target is 1 % for each.  Writes DIR/spectral.md and
-DIR/spectral.csv.
+over the sun's disc — at the scene's own wavelengths (with and without its band
+samples) against every 2 nm (161 wavelengths over 380-700 nm) and, for single sizes by
+Mie, against the scene's bands each integrated at 0.25 nm.  Reports, over the
+scattering angles the scene's image shows, the luminance Y's relative RMS and worst
+difference and the chromaticity x, y's worst relative difference; the target is 1 %
+for each.  Writes DIR/spectral.md and DIR/spectral.csv.
 
 Left out: scenes whose particles need 2-D tables (falling raindrops, Marshall–Palmer's
 flattened drops, oriented crystals; their cost at 161 wavelengths is hours) and the
@@ -23,7 +24,6 @@ import argparse
 import copy
 import os
 import sys
-import time
 
 import numpy as np
 

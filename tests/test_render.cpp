@@ -271,12 +271,13 @@ TEST_F(Render, TheSunAtOnePointFiveTimesTenToTheElevenMetresIsHitInDoubleAndFloa
 }
 
 // Spectral rendering through a dispersive atmosphere: the sunset scene, its telephoto
-// frame narrowed to 0.2° tall at 120×100 (0.002° a pixel) around the sun's upper limb.  Air lifts short
-// wavelengths more than long ones (by ~0.006° between 420 and 680 nm here), so just
-// below the limb the pixels see the sun at short wavelengths only — green, as Rayleigh
-// extinction at this air mass has taken the blue — while deep inside the disc every
-// wavelength reaches it: within the limb's top four rows one is greener (G/R higher by
-// a fifth) than the disc, in every column.  A spectral scene compiles per-ray dispersion; an RGB scene does not.
+// frame narrowed to 0.2° tall at 120×100 (0.002° a pixel) around the sun's upper limb.
+// Air lifts short wavelengths more than long ones (by ~0.006° between 420 and 680 nm
+// here), so just below the limb the pixels see the sun at short wavelengths only —
+// green, as Rayleigh extinction at this air mass has taken the blue — while deep inside
+// the disc every wavelength reaches it: within the limb's top four rows one is greener
+// (G/R higher by a fifth) than the disc, in every column.  A spectral scene compiles
+// per-ray dispersion; an RGB scene does not.
 TEST_F(Render, ASpectralSunsetHasAGreenUpperRimAndCompilesDispersionOnlyWhenSpectral) {
   std::ifstream in(std::string(ARCUS_SOURCE_DIR) + "/scenes/sunset_spectral.json");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

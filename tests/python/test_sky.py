@@ -106,7 +106,6 @@ def test_the_secondarys_colours_are_reversed(bows):
     assert peak(123, 132, 0) > peak(123, 132, 2)
 
 
-
 def supernumerary_maxima(theta, y, primary):
     """The maxima of y(θ) inside the primary's (θ above it), each with its Michelson
     contrast against the minimum before it: [(θ, contrast), …]."""
