@@ -28,8 +28,9 @@ std::string small_mirage() {
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   text.replace(text.find("\"height\": 400"), 13, "\"height\": 60");
   text.replace(text.find("\"width\": 800"), 12, "\"width\": 120");
-  const std::string mesh_ref = "../data/meshes/";
-  text.replace(text.find(mesh_ref), mesh_ref.size(), std::string(ARCUS_SOURCE_DIR) + "/data/meshes/");
+  const std::string data_ref = "../data/", data = std::string(ARCUS_SOURCE_DIR) + "/data/";
+  for (size_t at = text.find(data_ref); at != std::string::npos; at = text.find(data_ref, at + data.size()))
+    text.replace(at, data_ref.size(), data);  // the mesh and the ground's texture
   return text;
 }
 

@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "curved/advance.h"
 #include "geometry/mesh.h"
+#include "render/sky_light.h"
 #include "sky/scattering.h"
 
 namespace arcus::render {
@@ -119,7 +120,7 @@ void read_images(RenderScene* scene, const std::string& path) {
   for (size_t m = 0; m < d.materials.size(); ++m)
     if (!d.materials[m].texture.empty()) {
       try {
-        scene->textures[m] = image::read_image(d.materials[m].texture);
+        scene->textures[m] = image::MipPyramid(image::read_image(d.materials[m].texture));
       } catch (const Error& e) {
         fail(e.status(), path + ": $.materials." + d.materials[m].name + ".texture: " + e.what());
       }
@@ -142,6 +143,8 @@ void read_images(RenderScene* scene, const std::string& path) {
     sky.channels = {"R", "G", "B"};
     sky.pixels = sky::sky_panorama(d.atmosphere, (90 - sun.elevation_deg) * M_PI / 180, -sun.azimuth_deg * M_PI / 180,
                                    sky.width, sky.height);
+    for (float& v : sky.pixels) v = static_cast<float>(v * d.sky.intensity);
+    scene->sky_irradiance = sky_irradiance_map(sky, sun.power, sun.elevation_deg, d.sky.ground_albedo);
   }
 }
 

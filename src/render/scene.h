@@ -14,6 +14,7 @@
 #include "core/buffer.h"
 #include "curved/field_scene.h"
 #include "image/image_io.h"
+#include "image/mipmap.h"
 #include "curved/advance_desc.h"  // kernels/curved/advance_desc.h: the ray status codes
 #include "render/render_desc.h"   // kernels/render/render_desc.h
 #include "render/scene_desc.h"
@@ -31,8 +32,11 @@ struct RenderScene : curved::FieldScene {
   std::vector<std::vector<double>> mesh_uvs;  // per mesh: 6 per triangle (its corners' uv), or empty
   std::vector<arcus_shape_d> shapes;
   std::vector<int32_t> shape_object;           // per shape: its index in desc.objects
-  std::vector<image::Image> textures;          // per material (empty: none)
+  std::vector<image::MipPyramid> textures;     // per material (empty: none)
   image::Image sky_image;
+  // A daylight sky's light on surfaces: irradiance (linear sRGB, W m⁻² nm⁻¹) per
+  // surface normal, an equirectangular map over normals (sky_light.h); empty otherwise.
+  image::Image sky_irradiance;
   std::array<double, 3> lo{}, hi{};            // the bounds: rays that leave see the sky
 
   // Device copies in the kernels' precision (0: double, 1: float), made on first use.

@@ -5,6 +5,7 @@
 
 #include "image/image_io.h"
 #include "render/photons.h"
+#include "render/sky_light.h"
 #include "render/surface.h"
 #include "render/trace.h"
 
@@ -23,7 +24,8 @@ Vec3 sky_radiance(const RenderScene& s, Vec3 d) {
     case SkyKind::Daylight: {
       const auto uv = image::equirect_uv(d.x, d.y, d.z);
       const auto c = image::sample_bilinear(s.sky_image, uv[0], uv[1], true);
-      return sky.intensity * Vec3{c[0], c[1], c[2]};
+      // A daylight panorama is made with its intensity (scene.cpp); an image is scaled here.
+      return (sky.kind == SkyKind::Image ? sky.intensity : 1.0) * Vec3{c[0], c[1], c[2]};
     }
   }
   return {0, 0, 0};
@@ -98,21 +100,33 @@ struct Shading {
   std::vector<Surface> surfaces;
 };
 
-// Each pixel's surface and its own light (a hit's emission), or the sky it sees.
-Shading surfaces_and_sky(const RenderScene& s, const Primary& prim) {
+// Each pixel's surface and its own light (a hit's emission; under a daylight sky, the
+// sky's light on it too: sky_light.h), or the sky it sees.  The image is `width` wide.
+Shading surfaces_and_sky(const RenderScene& s, const Primary& prim, int width) {
   const size_t n = prim.status.size();
   Shading sh;
   sh.radiance.assign(n, Vec3{0, 0, 0});
   sh.albedo.assign(n, Vec3{0, 0, 0});
   sh.surfaces.resize(n);
+  std::vector<int32_t> object(n, -1);
+  for (size_t p = 0; p < n; ++p) {
+    if (prim.status[p] != ARCUS_STATUS_HIT) continue;
+    sh.surfaces[p] = surface_at(s, prim.kind[p], prim.index[p], vec3(&prim.position[3 * p]), vec3(&prim.direction[3 * p]));
+    object[p] = prim.object[p];
+  }
+  set_footprints(object, width, &sh.surfaces);
+  const bool sky_light = !s.sky_irradiance.pixels.empty();
   for (size_t p = 0; p < n; ++p) {
     const Vec3 d = vec3(&prim.direction[3 * p]);
     if (prim.status[p] == ARCUS_STATUS_HIT) {
       const ObjectDesc& o = s.desc.objects[static_cast<size_t>(prim.object[p])];
       const MaterialDesc& m = s.desc.materials[static_cast<size_t>(o.material)];
-      sh.surfaces[p] = surface_at(s, prim.kind[p], prim.index[p], vec3(&prim.position[3 * p]), d);
       sh.albedo[p] = albedo(s, static_cast<size_t>(o.material), sh.surfaces[p]);
       sh.radiance[p] = m.emission;
+      if (sky_light) {
+        const Vec3 e = sky_irradiance(s.sky_irradiance, sh.surfaces[p].normal), a = sh.albedo[p];
+        sh.radiance[p] = sh.radiance[p] + (1 / M_PI) * Vec3{a.x * e.x, a.y * e.y, a.z * e.z};
+      }
     } else if (prim.status[p] == ARCUS_STATUS_LEFT_BOX || prim.status[p] == ARCUS_STATUS_DONE ||
                prim.status[p] == ARCUS_STATUS_STEP_LIMIT) {
       sh.radiance[p] = sky_radiance(s, d);
@@ -204,7 +218,7 @@ void add_direct_light(arcus_context_t* ctx, arcus_renderer_s* r, const Primary& 
 
 void shade(arcus_context_t* ctx, arcus_renderer_s* r, const Primary& prim, RenderJob* job) {
   const RenderScene& s = *r->scene;
-  Shading sh = surfaces_and_sky(s, prim);
+  Shading sh = surfaces_and_sky(s, prim, static_cast<int>(r->camera.width));
   if (s.desc.photons.count > 0) {
     add_photon_light(ctx, r, prim, &sh, job);
   } else {

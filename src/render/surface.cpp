@@ -50,13 +50,43 @@ Surface surface_at(const RenderScene& s, int32_t kind, int32_t index, Vec3 p, Ve
 Vec3 albedo(const RenderScene& s, size_t material, const Surface& surf) {
   const MaterialDesc& m = s.desc.materials[material];
   Vec3 a = m.diffuse;
-  const image::Image& tex = s.textures[material];
-  if (tex.width > 0 && surf.has_uv) {
-    const double u = surf.u * m.uv_scale[0], v = surf.v * m.uv_scale[1];
-    const auto c = image::sample_bilinear(tex, u - std::floor(u), v - std::floor(v), true);
+  const image::MipPyramid& tex = s.textures[material];
+  if (!tex.empty() && surf.has_uv) {
+    const double su = m.uv_scale[0], sv = m.uv_scale[1];
+    const double u = surf.u * su, v = surf.v * sv;
+    const auto c = tex.sample(u - std::floor(u), v - std::floor(v), surf.du_x * su, surf.dv_x * sv, surf.du_y * su,
+                              surf.dv_y * sv);
     a = {a.x * c[0], a.y * c[1], a.z * c[2]};
   }
   return a;
+}
+
+void set_footprints(const std::vector<int32_t>& object, int width, std::vector<Surface>* surfaces) {
+  const auto& s = *surfaces;
+  const size_t n = s.size(), w = static_cast<size_t>(width);
+  // The change toward the nearer-looking of the neighbours at p − step and p + step.
+  auto change = [&](size_t p, bool left_ok, bool right_ok, size_t step, double* du, double* dv) {
+    double best = INFINITY;
+    *du = *dv = 0;
+    for (int side = -1; side <= 1; side += 2) {
+      if (side < 0 ? !left_ok : !right_ok) continue;
+      const size_t q = side < 0 ? p - step : p + step;
+      if (object[q] != object[p] || !s[q].has_uv) continue;
+      const double eu = side * (s[q].u - s[p].u), ev = side * (s[q].v - s[p].v);
+      if (eu * eu + ev * ev < best) {
+        best = eu * eu + ev * ev;
+        *du = eu;
+        *dv = ev;
+      }
+    }
+  };
+  for (size_t p = 0; p < n; ++p) {
+    Surface& f = (*surfaces)[p];
+    if (object[p] < 0 || !f.has_uv) continue;
+    const size_t x = p % w, y = p / w;
+    change(p, x > 0, x + 1 < w, 1, &f.du_x, &f.dv_x);
+    change(p, y > 0, p + w < n, w, &f.du_y, &f.dv_y);
+  }
 }
 
 }  // namespace arcus::render

@@ -49,6 +49,8 @@ def test_a_bad_scene_raises_with_the_file_and_key(tmp_path):
      "$.lights[0].elevation_deg", "0 to 90"),
     ('"lights": [{"type": "daylight_sun", "elevation_deg": 30, "azimuth_deg": 0}], "sky": {"type": "daylight"},'
      ' "atmosphere": {"ozone_du": 5000}', "$.atmosphere.ozone_du", "ozone_du must lie in [0, 1000]"),
+    ('"lights": [{"type": "daylight_sun", "elevation_deg": 30, "azimuth_deg": 0}],'
+     ' "sky": {"type": "daylight", "ground_albedo": 1.5}', "$.sky.ground_albedo", "0 to 1"),
 ])
 def test_a_bad_daylight_scene_names_its_key(tmp_path, replace, key, words):
     path = small_scene(tmp_path)
@@ -70,6 +72,40 @@ def test_a_daylight_scene_is_lit_by_the_shared_sun_and_sky(tmp_path):
     image = arcus.render(path).image
     lit, sky = image[12, 16], image[2, 2]
     assert lit[0] / lit[2] > 1.0 > sky[0] / sky[2]
+
+
+def linear_srgb(nm, spectrum):
+    """Linear sRGB of a spectrum sampled at nm (Y = 1 for a flat 1), through the CIE 1931
+    table in data/spectra read here, not through arcus."""
+    cie = np.loadtxt(ROOT / "data" / "spectra" / "cie1931_2deg_5nm.csv", delimiter=",", skiprows=1)
+    bars = np.array([np.interp(nm, cie[:, 0], cie[:, c]) for c in (1, 2, 3)])
+    xyz = bars @ spectrum / bars[1].sum()
+    return np.array([[3.2404542, -1.5371385, -0.4985314], [-0.9692660, 1.8760108, 0.0415560],
+                     [0.0556434, -0.2040259, 1.0572252]]) @ xyz
+
+
+def test_a_white_ground_under_daylight_has_the_sun_and_skys_light_over_pi(tmp_path):
+    # A white disc (albedo 1) seen from above, the daylight sun 30° up: its radiance is
+    # (E_sun cos z + E_sky)/π, and arcus.daylight.ground_irradiance integrates the sky
+    # over the hemisphere by its own quadrature (no panorama, no renderer).  Tolerance
+    # 2 %: the two colour integrations (arcus's band weights, this file's table read at
+    # 10 nm) and the panorama's interpolation (0.23 % in tests/unit/test_sky_light.cpp);
+    # measured: 0.15 %.
+    path = tmp_path / "ground.json"
+    path.write_text("""{"name": "ground", "medium": {"type": "constant", "n": 1.0},
+      "integrator": {"method": "dp45", "rtol": 1e-12, "atol": 1e-6, "length": 100},
+      "camera": {"position": [0, 10, 0], "look_at": [0, 0, 0], "up": [0, 0, 1], "vfov_deg": 10, "width": 8, "height": 8},
+      "materials": {"white": {"diffuse": [1, 1, 1]}},
+      "objects": [{"type": "disc", "center": [0, 0, 0], "normal": [0, 1, 0], "radius": 50, "material": "white"}],
+      "lights": [{"type": "daylight_sun", "elevation_deg": 30, "azimuth_deg": 40}],
+      "sky": {"type": "daylight", "ground_albedo": 0.9}}""")
+    seen = arcus.render(path).image.reshape(-1, 3).mean(axis=0) * np.pi
+    import arcus.daylight as daylight
+    nm = np.arange(365.0, 830.0, 10.0)
+    direct, diffuse = daylight.ground_irradiance(nm, 60.0)
+    band = daylight.solar_irradiance(nm, band=10) / daylight.solar_irradiance(nm)  # the renderer's 10 nm bands
+    expected = linear_srgb(nm, (direct + diffuse) * band)
+    np.testing.assert_allclose(seen, expected, rtol=0.02)
 
 
 def test_the_daylight_sky_is_brightest_toward_its_sun(tmp_path):

@@ -15,17 +15,18 @@ fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-# The inferior mirage at 160x80 (fast on a CPU), its mesh path made absolute since the
-# scene now lives in the temporary directory.
+# The inferior mirage at 160x80 (fast on a CPU), its mesh's and texture's paths made
+# absolute since the scene now lives in the temporary directory.
 python3 - "$source/scenes/inferior_mirage.json" "$work/scene.json" <<'EOF'
 import json, os, sys
 src, dst = sys.argv[1], sys.argv[2]
 scene = json.load(open(src))
 scene["name"] = "view_test"
 scene["camera"]["width"], scene["camera"]["height"] = 160, 80
-for obj in scene["objects"]:
-    if "file" in obj:
-        obj["file"] = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(src)), obj["file"]))
+here = os.path.dirname(os.path.abspath(src))
+for entry, key in [(o, "file") for o in scene["objects"]] + [(m, "texture") for m in scene["materials"].values()]:
+    if key in entry:
+        entry[key] = os.path.normpath(os.path.join(here, entry[key]))
 json.dump(scene, open(dst, "w"), indent=2)
 EOF
 
