@@ -114,14 +114,21 @@ LightDesc parse_light(const Node& l, const sky::Atmosphere& atmosphere) {
     l.expect_object({"type", "elevation_deg", "azimuth_deg"});
     d.daylight = true;
     d.elevation_deg = l.member("elevation_deg").number();
-    if (!(d.elevation_deg >= 0 && d.elevation_deg <= 90))
-      l.member("elevation_deg").fail("expected 0 to 90 degrees (a daylight sun lights the scene from above the "
-                                     "horizon), got " + number(d.elevation_deg));
+    if (!(d.elevation_deg >= -10 && d.elevation_deg <= 90))
+      l.member("elevation_deg").fail("expected -10 to 90 degrees (below -10 the clear sky's twilight, lit over "
+                                     "Earth's shadow, is beyond the sky's model), got " + number(d.elevation_deg));
     d.azimuth_deg = l.member("azimuth_deg").number();
     const double e = d.elevation_deg * M_PI / 180, a = d.azimuth_deg * M_PI / 180;
     d.direction = {std::sin(a) * std::cos(e), std::sin(e), std::cos(a) * std::cos(e)};
-    const auto rgb = sky::sun_linear_srgb(atmosphere, M_PI / 2 - e);
-    d.power = {rgb[0], rgb[1], rgb[2]};
+    // A sun at or below the horizon lights no surface directly: the ground hides it (a
+    // ducted ray that still reaches it, as in a Novaya Zemlya scene, is the visible
+    // sun's business, an emissive sphere); it still lights the twilight sky.
+    if (e > 0) {
+      const auto rgb = sky::sun_linear_srgb(atmosphere, M_PI / 2 - e);
+      d.power = {rgb[0], rgb[1], rgb[2]};
+    } else {
+      d.power = {0, 0, 0};
+    }
   } else if (d.kind == LightKind::Sun) {
     l.expect_object({"type", "direction", "irradiance"});
     d.direction = scene::parse_direction(l.member("direction"));

@@ -50,11 +50,28 @@ def test_the_default_output_is_the_scenes_name_here(tmp_path):
     assert image.read(tmp_path / "cloudbow.png").shape == (24, 32, 3)
 
 
+def test_a_skys_profile_peaks_where_descartes_puts_the_primary_bow(tmp_path):
+    # The double bow's primary, 500 µm drops through the sun's disc, is brightest a
+    # fraction of a degree inside Descartes' angle (137.6° at 700 nm to 139.4° at 400 nm,
+    # thesis eq. 4.20): the profile's θ is the angle from the sun, its Y the sky's.
+    r = arcus_command("render", "rainbow/double_bow", "--quick", "--width", "96", "--height", "72", "-o", "b.png",
+                      "--profile", "p.csv", "--profile", "p.png", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    table = np.loadtxt(tmp_path / "p.csv", delimiter=",", skiprows=1)
+    theta, y = table[:, 0], table[:, 1]
+    assert np.all(np.diff(theta) > 0) and np.all(table[:, 4] >= 1)
+    bows = (theta > 125) & (theta < 141)
+    assert 136.5 < theta[bows][np.argmax(y[bows])] < 139.5
+    assert image.read(tmp_path / "p.png").shape[2] == 3
+
+
 @pytest.mark.parametrize("args, words", [
     (["render", "no_such_scene"], ["no_such_scene"]),
     (["render", "inferior_mirage", "-o", "x.gif"], ["x.gif", ".png"]),
     (["render", "inferior_mirage", "--samples", "4"], ["--samples", "render"]),
     (["render", "mirage"], ["curved", "arcus trace"]),
+    (["render", "rainbow/cloudbow", "--profile", "p.gif"], ["p.gif", ".csv"]),
+    (["render", "inferior_mirage", "--profile", "p.png"], ["--profile", "rainbow skies"]),
     (["render", "{typo}"], ["typo.json", "$.sun.sampels"]),
 ])
 def test_bad_input_exits_2_naming_what_is_wrong(tmp_path, repo, args, words):

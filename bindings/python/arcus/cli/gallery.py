@@ -129,7 +129,8 @@ def steps(full):
         tables = {"halo": ["--wavelengths", "9", "--orientations", "500"],
                   "sundogs": ["--wavelengths", "9", "--orientations", "300"]}.get(name, ["--wavelengths", "17"])
         s.append(Step("Rainbow skies and halos", title, description("rainbow/" + name),
-                      ["render", "rainbow/" + name, "-o", "{out}/%s.png" % name, "--quiet"]
+                      ["render", "rainbow/" + name, "-o", "{out}/%s.png" % name,
+                       "--profile", "{out}/%s_profile.png" % name, "--quiet"]
                       + ([] if full else ["--quick", "--width", "400", "--height", "300"] + tables), "sky",
                       docs_image="sky/%s.png" % name if name in ("double_bow", "supernumerary") else "",
                       expected_seconds={"halo": 45.0, "sundogs": 30.0, "twinned": 26.0, "cloudbow": 10.0}.get(name, 3.0)))

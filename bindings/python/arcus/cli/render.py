@@ -51,6 +51,9 @@ def add(sub):
                    "(tcp://host:8786)")
     p.add_argument("--export-view", metavar="PATH", help="rainbow skies: also write the sky with its table for "
                    "the live preview (arcus view PATH)")
+    p.add_argument("--profile", action="append", metavar="PATH", help="rainbow skies: also write the sky's "
+                   "luminance and chromaticity against the angle from the sun, with where closed forms put its bows "
+                   "and halos (.png, .svg, .pdf: a plot; .csv: the numbers); may be given several times")
     p.add_argument("--device", help="an OpenCL device: an index or part of its name (default: ARCUS_DEVICE, else "
                    "a GPU, else the CPU)")
     p.add_argument("--list", action="store_true", help="list the bundled scenes and exit")
@@ -92,6 +95,8 @@ def run(args):
                             % (path, engine, "trace" if engine == "curved" else "sweep", args.scene))
     name = doc.get("name") or path.stem
     outputs = outputs_of(args, name)
+    for profile in args.profile or []:
+        check_profile(Path(profile))
     started = time.monotonic()
     with Context(_device(args.device)) as ctx, tempfile.TemporaryDirectory(prefix="arcus-render-") as tmp:
         exr, png = Path(tmp) / "image.exr", Path(tmp) / "image.png"
@@ -133,7 +138,7 @@ def _refuse(args, flag, engine, why):
         raise ArgumentError("--%s does not apply to %s scenes: %s" % (flag.replace("_", "-"), engine, why))
 
 
-RAINBOW_ONLY = ("wavelengths", "orientations", "workers", "scheduler", "export_view")
+RAINBOW_ONLY = ("wavelengths", "orientations", "workers", "scheduler", "export_view", "profile")
 
 
 
@@ -208,6 +213,8 @@ def render_rainbow(ctx, path, doc, args, exr, png, bar):
     result = sky.render(doc, exr=exr, png=png, width=width, height=height, sun_samples=samples,
                         march_steps=march_steps, base_dir=base_dir, client=client, workers=args.workers,
                         progress=bar, context=ctx)
+    for profile in args.profile or []:
+        write_profile(Path(profile), result, doc)
     if args.export_view:
         Path(args.export_view).parent.mkdir(parents=True, exist_ok=True)
         sky.export(doc, args.export_view, table=result.table, width=width, height=height, sun_samples=samples,
@@ -215,6 +222,53 @@ def render_rainbow(ctx, path, doc, args, exr, png, bar):
     t = result.table
     return "%d × %d, %d wavelengths, %d phase tables (%d computed, %d cached)" % (
         width, height, t.wavelengths.size, t.computed + t.cached, t.computed, t.cached)
+
+
+PROFILE_FORMATS = (".png", ".svg", ".pdf", ".csv")
+
+
+def check_profile(path):
+    if path.suffix.lower() not in PROFILE_FORMATS:
+        raise ArgumentError("--profile %s: unknown format %r (expected %s)" % (path, path.suffix,
+                                                                            ", ".join(PROFILE_FORMATS)))
+
+
+def write_profile(path, result, doc):
+    """The rendered sky's radial profile (arcus.sky.radial_profile, 0.1° bins): a CSV of
+    θ, Y, x, y, pixels, or a plot of Y (relative to its largest) and x, y against θ with
+    the closed forms' angles (arcus.sky.reference_angles) shaded."""
+    profile = sky.radial_profile(result, 0.1)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    if path.suffix.lower() == ".csv":
+        columns = ("theta", "Y", "x", "y", "pixels")
+        with open(path, "w") as f:
+            f.write("theta_deg,Y,x,y,pixels\n")
+            for row in zip(*(profile[c] for c in columns)):
+                f.write("%.2f,%.6g,%.6f,%.6f,%d\n" % row)
+        return
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(5.2, 3.9), height_ratios=(2, 1))
+    theta = profile["theta"]
+    top.plot(theta, profile["Y"] / profile["Y"].max(), color="k", lw=1)
+    bottom.plot(theta, profile["x"], color="tab:red", lw=1, label="x")
+    bottom.plot(theta, profile["y"], color="tab:green", lw=1, label="y")
+    for low, high, label in sky.reference_angles(doc):
+        if high < theta.min() or low > theta.max():
+            continue
+        for ax in (top, bottom):
+            ax.axvspan(low, high, color="tab:blue", alpha=0.15, lw=0)
+        top.annotate(label, (0.5 * (low + high), 1.02), ha="center", va="bottom", fontsize=7, color="tab:blue",
+                     annotation_clip=False)
+    top.set_ylabel("luminance (relative)")
+    top.set_ylim(0, 1.1)
+    bottom.set_ylabel("chromaticity")
+    bottom.set_xlabel("angle from the sun θ [deg]  (shaded: closed forms, 400–700 nm)")
+    bottom.legend(fontsize=7, loc="best")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
 
 
 RENDERERS = {"render": render_curved, "ocean": render_ocean, "rainbow": render_rainbow}
