@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "scene/common_keys.h"
 #include "scene/json_reader.h"
+#include "sky/scattering.h"
 
 namespace arcus::ocean {
 namespace {
@@ -155,7 +156,18 @@ Grid parse_grid(const Node& n) {
 }
 
 
-Light parse_light(const Node& n) {
+// A light's "spectrum": a number, {"nm", "values"}, or "daylight" for a sun or sky (set
+// later from the scene's atmosphere: daylight_spectra); *daylight tells which.
+Spectrum parse_light_spectrum(const Node& n, bool sun_or_sky, bool* daylight) {
+  *daylight = n.value().is_string();
+  if (!*daylight) return parse_spectrum(n);
+  if (n.string() != "daylight" || !sun_or_sky)
+    n.fail(sun_or_sky ? "expected a number, {\"nm\": [...], \"values\": [...]} or \"daylight\""
+                      : "\"daylight\" is the spectrum of a sun or a sky only");
+  return {};
+}
+
+Light parse_light(const Node& n, bool* daylight) {
   enum class Type { point, spot, sun, directional, sky };
   const Type type = n.member("type").choice<Type>({{"point", Type::point},
                                                    {"spot", Type::spot},
@@ -203,8 +215,31 @@ Light parse_light(const Node& n) {
       L.kind = Light::sky;
       break;
   }
-  L.spectrum = parse_spectrum(n.member("spectrum"));
+  L.spectrum = parse_light_spectrum(n.member("spectrum"), type == Type::sun || type == Type::sky, daylight);
   return L;
+}
+
+// The shared daylight (docs/daylight.md) as the ocean's sun and sky: the direct sun's
+// and the clear sky's plane irradiance on the sea surface, sky::ground_irradiance at the
+// daylight sun's zenith in the scene's atmosphere, every 5 nm over the daylight's
+// 360–830 nm (a light is 0 outside its spectrum's range).  The sky's radiance is taken
+// as uniform with that plane irradiance (the ocean's sky light: below the surface the
+// sky is squeezed into Snell's window, where its shape matters little).
+void daylight_spectra(const Node& lights, const sky::Atmosphere& atmosphere, OceanSceneDesc* s) {
+  const auto& daylight = s->daylight_lights;
+  if (daylight.empty()) return;
+  const Light* sun = nullptr;
+  for (size_t l : daylight)
+    if (s->lights[l].kind == Light::directional) sun = sun ? sun : &s->lights[l];
+  if (!sun)
+    lights.elements()[daylight.front()].member("spectrum").fail(
+        "a \"daylight\" sky needs the sun that lights it: a {\"type\": \"sun\", \"spectrum\": \"daylight\"}");
+  std::vector<double> nm;
+  for (double w = 360; w <= 830 + 1e-9; w += 5) nm.push_back(w);
+  std::vector<double> direct(nm.size()), diffuse(nm.size());
+  sky::ground_irradiance(atmosphere, std::acos(-sun->direction[2]), nm, direct.data(), diffuse.data());
+  for (size_t l : daylight)
+    s->lights[l].spectrum = {nm, s->lights[l].kind == Light::sky ? diffuse : direct};
 }
 
 // A box corner: numbers, or null for "unbounded on that axis" (JSON has no infinity).
@@ -314,14 +349,21 @@ OceanSceneDesc parse_document(const Document& doc) {
   const std::string& file = doc.file_name();
   const Node root = doc.root();
   root.expect_object(
-      {"name", "description", "water", "grid", "lights", "medium", "photons", "profile", "view"});
+      {"name", "description", "water", "grid", "lights", "atmosphere", "medium", "photons", "profile", "view"});
   s.name = scene::parse_name(root.member("name"));
   if (auto v = root.find("description")) s.description = v->string();
   s.water = parse_water(root.member("water"));
   if (auto v = root.find("grid")) s.grid = parse_grid(*v);
   const Node lights = root.member("lights");
-  for (const Node& l : lights.elements()) s.lights.push_back(parse_light(l));
+  for (const Node& l : lights.elements()) {
+    bool daylight = false;
+    s.lights.push_back(parse_light(l, &daylight));
+    if (daylight) s.daylight_lights.push_back(s.lights.size() - 1);
+  }
   if (lights.array_size() == 0) lights.fail("expected at least one light");
+  sky::Atmosphere atmosphere;
+  if (auto v = root.find("atmosphere")) atmosphere = scene::parse_atmosphere(*v);
+  daylight_spectra(lights, atmosphere, &s);
   if (auto v = root.find("medium")) s.medium = parse_medium(*v);
   if (auto v = root.find("photons")) parse_photons(*v, &s.trace);
   if (auto v = root.find("profile")) parse_profile(*v, &s.trace);
@@ -349,7 +391,13 @@ arcus_scene_s* load(arcus_context_t* ctx, const std::string& path, const scene::
   scene->desc = parse_document(doc);
   scene->name = scene->desc.name;
   scene->description = scene->desc.description;
-  scene->document = doc.dump();
+  // The document as resolved: a daylight light's spectrum as the numbers it became.
+  json::Json resolved = doc.value();
+  for (size_t l : scene->desc.daylight_lights) {
+    const Spectrum& sp = scene->desc.lights[l].spectrum;
+    resolved["lights"][l]["spectrum"] = {{"nm", sp.nm}, {"values", sp.values}};
+  }
+  scene->document = resolved.dump(2, ' ', false, json::Json::error_handler_t::replace);
   locked([&] { retain_context(ctx); });  // the scene's reference
   return scene.release();
 }

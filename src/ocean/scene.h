@@ -30,6 +30,7 @@ struct OceanSceneDesc {
   Water water;
   Grid grid;
   std::vector<Light> lights;
+  std::vector<size_t> daylight_lights;  // lights whose spectrum is the shared daylight's
   Medium medium;
   TraceParams trace;   // photons, max_interactions, seed, depths, layer
   bool has_camera = false;

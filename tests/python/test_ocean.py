@@ -5,6 +5,7 @@ literature; tolerances are justified where they are set.  The comparison with an
 independent plane-parallel solution is in test_ocean_profiles.py.
 """
 
+import json
 import math
 
 import numpy as np
@@ -161,3 +162,43 @@ def test_without_anti_stokes_no_photon_gains_energy(ctx):
     assert r.photons["wavelengths"].min() >= 440.0
     r = ocean.trace_photons(both, line, 200_000, **kw)
     assert r.photons["wavelengths"].min() < 440.0  # with anti-Stokes some do
+
+
+def daylight_scene(tmp_path, lights, atmosphere=None):
+    doc = {"name": "d", "water": {"preset": "atlantic"}, "lights": lights, "medium": {"surface": True},
+           "profile": {"depths": [0, 5]}}
+    if atmosphere:
+        doc["atmosphere"] = atmosphere
+    path = tmp_path / "daylight.json"
+    path.write_text(json.dumps(doc))
+    return path
+
+
+def test_a_daylight_sun_and_sky_are_the_shared_daylights_irradiance_on_the_sea(tmp_path):
+    # Determinism of the wiring: the scene's "daylight" spectra become arcus.daylight's
+    # direct and diffuse plane irradiance at the sun's zenith in the scene's atmosphere
+    # (that function is checked against SPCTRAL2 and closed forms in test_daylight.py),
+    # and the library's document shows them as numbers.
+    from arcus import _scene_file
+    import arcus.daylight as daylight
+    path = daylight_scene(tmp_path, [{"type": "sun", "zenith_deg": 40, "spectrum": "daylight"},
+                                     {"type": "sky", "spectrum": "daylight"}], {"aerosol_depth_500": 0.3})
+    lights = _scene_file.read(path, ("ocean",))[1]["lights"]
+    nm = np.asarray(lights[0]["spectrum"]["nm"])
+    assert nm[0] == 360 and nm[-1] == 830
+    direct, diffuse = daylight.ground_irradiance(nm, 40.0, aerosol_depth_500=0.3)
+    np.testing.assert_allclose(lights[0]["spectrum"]["values"], direct, rtol=1e-12)
+    np.testing.assert_allclose(lights[1]["spectrum"]["values"], diffuse, rtol=1e-12)
+
+
+@pytest.mark.parametrize("lights, words", [
+    ([{"type": "sky", "spectrum": "daylight"}], ["$.lights[0].spectrum", "needs the sun"]),
+    ([{"type": "point", "position": [0, 0, -1], "spectrum": "daylight"}], ["$.lights[0].spectrum", "sun or a sky"]),
+    ([{"type": "sun", "zenith_deg": 10, "spectrum": "sunny"}], ["$.lights[0].spectrum", "daylight"]),
+])
+def test_a_bad_daylight_light_names_its_key(tmp_path, lights, words):
+    from arcus import _scene_file
+    with pytest.raises(arcus.ArgumentError) as e:
+        _scene_file.read(daylight_scene(tmp_path, lights), ("ocean",))
+    for w in words:
+        assert w in str(e.value), str(e.value)
