@@ -30,10 +30,12 @@ typedef struct arcus_daylight_desc {
   double co2_ppm;              /* 0..10 000, in the air's King factor and index             */
   double aerosol_albedo;       /* its single-scattering albedo, 0..1                         */
   double aerosol_asymmetry;    /* g of its Henyey–Greenstein phase function, −0.99..0.99     */
+  double ground_albedo;        /* the Lambertian ground under the air, 0..1: the light it
+                                * reflects back into the sky (its multiple scattering)     */
 } arcus_daylight_desc;
 
 /* Fills desc with a clear mid-latitude day: sea level, 300 DU, τ(500) = 0.1, α = 1.3,
- * H = 1200 m, 415 ppm, albedo 0.95, g = 0.7. */
+ * H = 1200 m, 415 ppm, albedo 0.95, g = 0.7, over a black ground (ground_albedo 0). */
 ARCUS_API arcus_status arcus_daylight_desc_init(arcus_daylight_desc* desc);
 
 typedef struct arcus_optical_depths {

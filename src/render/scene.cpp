@@ -144,7 +144,7 @@ void read_images(RenderScene* scene, const std::string& path) {
     sky.pixels = sky::sky_panorama(d.atmosphere, (90 - sun.elevation_deg) * M_PI / 180, -sun.azimuth_deg * M_PI / 180,
                                    sky.width, sky.height);
     for (float& v : sky.pixels) v = static_cast<float>(v * d.sky.intensity);
-    scene->sky_irradiance = sky_irradiance_map(sky, sun.power, sun.elevation_deg, d.sky.ground_albedo);
+    scene->sky_irradiance = sky_irradiance_map(sky, sun.power, sun.elevation_deg, d.atmosphere.ground_albedo);
   }
 }
 

@@ -162,13 +162,8 @@ SkyDesc parse_sky(const Node& s, const std::string& base_dir) {
       if (auto v = s.find("intensity")) d.intensity = positive(*v);
       break;
     case SkyKind::Daylight:
-      s.expect_object({"type", "intensity", "ground_albedo"});
+      s.expect_object({"type", "intensity"});
       if (auto v = s.find("intensity")) d.intensity = positive(*v);
-      if (auto v = s.find("ground_albedo")) {
-        d.ground_albedo = v->number();
-        if (!(d.ground_albedo >= 0 && d.ground_albedo <= 1))
-          v->fail("expected an albedo from 0 to 1, got " + number(d.ground_albedo));
-      }
       break;
   }
   return d;

@@ -58,8 +58,6 @@ struct SkyDesc {
   Vec3 horizon{0, 0, 0}, zenith{0, 0, 0};      // gradient, by the direction's height
   std::string file;                            // image: equirectangular, absolute path
   double intensity = 1;                        // image, daylight: scale
-  double ground_albedo = 0.2;                  // daylight: the ground below the horizon that
-                                               // lights surfaces facing down (sky_light.h)
 };
 
 struct PhotonDesc {

@@ -2,7 +2,8 @@
 // the sky).  The irradiance a surface of normal n receives, E(n) = ∫ L(ω) max(0, ω·n) dω,
 // integrated once over the sky's panorama for a grid of normals and read per hit:
 // above the horizon the sky's radiance, below it a Lambertian ground of albedo ρ lit by
-// the sun and the sky, L = ρ/π · (E_sun sin e + E_sky(up)).  What the scene's own
+// the sun and the sky, L = ρ/π · (E_sun sin e + E_sky(up)), ρ the atmosphere's
+// ground_albedo (the ground that lights the sky back too: sky/scattering.h).  What the scene's own
 // objects hide of the sky, and light they reflect onto each other, are left out: the
 // ground under a shuttle sees the whole sky.
 #pragma once

@@ -11,13 +11,14 @@ namespace arcus::scene {
 
 sky::Atmosphere parse_atmosphere(const json::Node& node) {
   node.expect_object({"site_height", "ozone_du", "aerosol_depth_500", "angstrom_exponent", "aerosol_scale_height",
-                      "co2_ppm", "aerosol_albedo", "aerosol_asymmetry"});
+                      "co2_ppm", "aerosol_albedo", "aerosol_asymmetry", "ground_albedo"});
   sky::Atmosphere a;
   const std::pair<const char*, double*> fields[] = {
       {"site_height", &a.site_height_m},         {"ozone_du", &a.ozone_du},
       {"aerosol_depth_500", &a.aerosol_depth_500}, {"angstrom_exponent", &a.angstrom_exponent},
       {"aerosol_scale_height", &a.aerosol_scale_height_m}, {"co2_ppm", &a.co2_ppm},
-      {"aerosol_albedo", &a.aerosol_albedo},     {"aerosol_asymmetry", &a.aerosol_asymmetry}};
+      {"aerosol_albedo", &a.aerosol_albedo},     {"aerosol_asymmetry", &a.aerosol_asymmetry},
+      {"ground_albedo", &a.ground_albedo}};
   for (const auto& [name, value] : fields)
     if (auto v = node.find(name)) {
       *value = v->number();

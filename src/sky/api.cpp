@@ -36,6 +36,7 @@ sky::Atmosphere atmosphere_of(const arcus_daylight_desc* desc) {
   a.co2_ppm = desc->co2_ppm;
   a.aerosol_albedo = desc->aerosol_albedo;
   a.aerosol_asymmetry = desc->aerosol_asymmetry;
+  a.ground_albedo = desc->ground_albedo;
   sky::check_atmosphere(a, "desc.");
   return a;
 }
@@ -47,7 +48,8 @@ arcus_status arcus_daylight_desc_init(arcus_daylight_desc* desc) {
     require_pointer(desc, "desc");
     const sky::Atmosphere a;
     *desc = arcus_daylight_desc{a.site_height_m,     a.ozone_du, a.aerosol_depth_500, a.angstrom_exponent,
-                                a.aerosol_scale_height_m, a.co2_ppm,          a.aerosol_albedo, a.aerosol_asymmetry};
+                                a.aerosol_scale_height_m, a.co2_ppm,          a.aerosol_albedo, a.aerosol_asymmetry,
+                                a.ground_albedo};
   });
 }
 

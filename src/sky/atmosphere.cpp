@@ -38,7 +38,8 @@ void check_atmosphere(const Atmosphere& a, const std::string& prefix) {
                 {"aerosol_scale_height", a.aerosol_scale_height_m, 100, 20000},
                 {"co2_ppm", a.co2_ppm, 0, 10000},
                 {"aerosol_albedo", a.aerosol_albedo, 0, 1},
-                {"aerosol_asymmetry", a.aerosol_asymmetry, -0.99, 0.99}};
+                {"aerosol_asymmetry", a.aerosol_asymmetry, -0.99, 0.99},
+                {"ground_albedo", a.ground_albedo, 0, 1}};
   for (const auto& f : fields) require_within(f.value, f.lo, f.hi, prefix + f.name);
 }
 

@@ -19,12 +19,14 @@ struct Atmosphere {
   double aerosol_albedo = 0.95;         // its single-scattering albedo (the rest it absorbs)
   double aerosol_asymmetry = 0.7;       // g of its Henyey–Greenstein phase function
   double co2_ppm = 415;                 // in the air's King factor and index
+  double ground_albedo = 0;             // the Lambertian ground under the air, lighting the sky
+                                        // back (scattering.h); 0: black, the sky of air alone
 };
 
 // Throws INVALID_ARGUMENT naming the first field out of its range (prefix + name): the
 // site 0–80 km, ozone 0–1000 DU, τ(500) 0–10, α −1..4, H 100 m–20 km, CO2 0–10⁴ ppm,
 // albedo 0–1, g −0.99..0.99.  Every reader of an atmosphere (the C API, scene files)
-// checks with it.
+// checks with it.  The ground's albedo lies in 0..1.
 void check_atmosphere(const Atmosphere& atmosphere, const std::string& prefix);
 
 // Throws an invalid-argument error unless value is finite and within [lo, hi], naming it:

@@ -183,6 +183,28 @@ void ClearSky::tabulate_multiple_scattering() {
                   if (lit) second[k] += seen * std::exp(-co.depth(k, to_sun));
                 }
               });
+        // The ground where the direction meets it, a Lambertian reflector (Hillaire 2020,
+        // §5.1).  In L2: its radiance ρ/π·T_sun·μ_g lit by the sun through the air, seen
+        // through the air between (T), entered as 4π times it, as the air's terms above
+        // are before the isotropic phase's 1/4π.  In f, whose terms are the radiance a
+        // direction brings under a uniform field of radiance 1: the ground sends back ρ,
+        // seen as ρ·T, so each bounce off the ground is in
+        // the series as each scattering in the air is (Hillaire's f has the air only:
+        // over bright ground that leaves out the light the ground and the air pass back
+        // and forth, 10 % of the sun's flux at 400 nm over snow).
+        if (ground >= 0 && atmosphere_.ground_albedo > 0) {
+          const double rho = atmosphere_.ground_albedo;
+          const double g[3] = {x0[0] + ground * w[0], x0[1] + ground * w[1], x0[2] + ground * w[2]};
+          const double r_g = std::sqrt(dot(g, g)), mu_g = dot(g, sun) / r_g;
+          const Column between = segment(x0, w.data(), ground, true, kMsSteps);
+          Column to_sun;
+          const bool lit = mu_g > 0 && column_to_top(r_g, mu_g, &to_sun, kMsSunSteps);
+          for (size_t k = 0; k < nb; ++k) {
+            const double seen = std::exp(-co.depth(k, between));
+            transfer[k] += rho * seen;
+            if (lit) second[k] += 4 * rho * mu_g * seen * std::exp(-co.depth(k, to_sun));
+          }
+        }
       }
       // Isotropic phase at both ends (1/4π each) over 4π/N per direction: L2 = Σ/(4π N),
       // f = Σ/N; Ψ = L2/(1 − f).

@@ -5,8 +5,9 @@
 // Sky and Atmosphere Rendering Technique", EGSR) approximation: the second order with
 // isotropic phase, its transfer factor f summed as the series 1/(1 − f), tabulated per
 // height and sun angle.  Straight rays: refraction, which the direct sun's path has
-// (SlantPath), bends the sky's paths by less than 0.6° and is left out here; so is the
-// ground's reflection into the sky.  Host code.
+// (SlantPath), bends the sky's paths by less than 0.6° and is left out here.  A
+// Lambertian ground of the atmosphere's ground_albedo lights the sky back through the
+// same table (its light in the second order, its bounces in f).  Host code.
 #pragma once
 
 #include <array>

@@ -233,4 +233,43 @@ TEST(SkyScattering, AConservativeAtmosphereSendsBackUpWhatDoesNotReachTheGround)
   }
 }
 
+TEST(SkyScattering, OverAReflectingGroundTheAtmosphereStillBalancesItsFlux) {
+  // Rayleigh air over a Lambertian ground of albedo ρ: of the sun's flux μ0 the ground
+  // absorbs (1 − ρ)·E↓ (E↓ its direct and diffuse light, the latter raised by the
+  // ground's own light scattered back: Hillaire's ground term in L2) and the rest leaves
+  // at the top, as the air's upward light (lit by the ground too) plus the ground's own
+  // light seen through the air, ρ·E↓·2∫T(μ)μdμ with T = exp(−τ/μ) (plane-parallel).  The
+  // sky's ground term is what is checked.  Hillaire's approximation treats the light
+  // the air and the ground pass back and forth as one isotropic series: measured, the
+  // balance closes within 1.1 % over ρ = 0.3 and overshoots by up to 11 % over snow
+  // (ρ = 0.8, 400 nm, the sun overhead); with the ground in L2 alone, as Hillaire has
+  // it, it fell short by up to 4.9 % and 14 %.  Bounds: 2 % and 12 %.
+  Atmosphere ground = rayleigh_only(), top = ground;
+  top.site_height_m = 80000;
+  const std::vector<double> nm = {400, 550};
+  for (const double albedo : {0.3, 0.8}) {
+    ground.ground_albedo = top.ground_albedo = albedo;
+    for (const double sun_deg : {0.0, 60.0}) {
+      const double mu0 = std::cos(sun_deg * kDeg);
+      double direct[2], diffuse[2];
+      arcus::sky::ground_irradiance(ground, sun_deg * kDeg, nm, direct, diffuse, true);
+      const std::vector<double> up = upward_flux(ClearSky(top, sun_deg * kDeg, true), nm);
+      for (size_t k = 0; k < nm.size(); ++k) {
+        const double e0 = arcus::sky::solar_irradiance(nm[k]);
+        const double tau = arcus::sky::rayleigh_optical_depth(nm[k], 101325, 45, 0, ground.co2_ppm);
+        double escape = 0;  // 2∫0^1 e^{−τ/μ} μ dμ, midpoint rule in μ
+        for (int i = 0; i < 2000; ++i) {
+          const double mu = (i + 0.5) / 2000;
+          escape += 2 * std::exp(-tau / mu) * mu / 2000;
+        }
+        const double down = (direct[k] + diffuse[k]) / e0;
+        const double out = (1 - albedo) * down + up[k] + albedo * down * escape;
+        std::printf("%3.0f nm, sun %2.0f deg, albedo %.1f: absorbed %.4f + air up %.4f + ground up %.4f = %.4f of %.4f\n",
+                    nm[k], sun_deg, albedo, (1 - albedo) * down, up[k], albedo * down * escape, out, mu0);
+        EXPECT_NEAR(out / mu0, 1, albedo < 0.5 ? 0.02 : 0.12) << nm[k] << " nm, sun " << sun_deg << ", albedo " << albedo;
+      }
+    }
+  }
+}
+
 }  // namespace

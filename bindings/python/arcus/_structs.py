@@ -260,7 +260,7 @@ class DaylightDescStruct(ctypes.Structure):
 
     _fields_ = [("site_height", c_double), ("ozone_du", c_double), ("aerosol_depth_500", c_double),
                 ("angstrom_exponent", c_double), ("aerosol_scale_height", c_double), ("co2_ppm", c_double),
-                ("aerosol_albedo", c_double), ("aerosol_asymmetry", c_double)]
+                ("aerosol_albedo", c_double), ("aerosol_asymmetry", c_double), ("ground_albedo", c_double)]
 
 
 class OpticalDepthsStruct(ctypes.Structure):

@@ -52,6 +52,8 @@ class Atmosphere:
         co2_ppm: CO2 in the air's King factor and refractive index.
         aerosol_albedo: the aerosol's single-scattering albedo (what it does not absorb).
         aerosol_asymmetry: g of the aerosol's Henyey–Greenstein phase function.
+        ground_albedo: the Lambertian ground's albedo, 0–1: the light it reflects back
+            into the sky (0: a black ground).
     """
 
     site_height: float
@@ -62,6 +64,7 @@ class Atmosphere:
     co2_ppm: float
     aerosol_albedo: float
     aerosol_asymmetry: float
+    ground_albedo: float = 0.0
 
     def _struct(self):
         return _lib.DaylightDescStruct(*(to_float(getattr(self, f.name), f.name) for f in fields(self)))
@@ -83,7 +86,7 @@ class OpticalDepths:
 
 def default_atmosphere():
     """The library's clear day: sea level, 300 DU, τ(500) = 0.1, α = 1.3, H = 1200 m, 415 ppm,
-    aerosol albedo 0.95 and g = 0.7."""
+    aerosol albedo 0.95 and g = 0.7, over a black ground."""
     desc = _lib.DaylightDescStruct()
     _lib.check(lib.arcus_daylight_desc_init(byref(desc)))
     return Atmosphere(*(getattr(desc, f.name) for f in fields(Atmosphere)))

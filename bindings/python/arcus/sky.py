@@ -11,6 +11,7 @@ asked), are summed over the populations into a volume scattering function
 the sky (``arcus_rainbow_render``: the sun's disc, the march, CIE XYZ and sRGB).
 """
 
+import dataclasses
 import functools
 import json
 import math
@@ -367,6 +368,22 @@ def atmosphere_of(scene):
         raise ArgumentError("atmosphere: %s" % e) from None
 
 
+def ground_lit_atmosphere(scene):
+    """:func:`atmosphere_of` over the scene's ground: a daylight ``background.ground``'s
+    albedo (0.2) is the atmosphere's ``ground_albedo``, the ground that lights the sky
+    back (one ground, given once: an ``atmosphere.ground_albedo`` beside it is refused)."""
+    scene = load_scene(scene)
+    atmosphere = atmosphere_of(scene)
+    background = scene.get("background", {})
+    ground = background.get("ground") if isinstance(background, dict) else None
+    if not _daylight_kind(ground, "background.ground"):
+        return atmosphere
+    if "ground_albedo" in scene.get("atmosphere", {}):
+        raise ArgumentError("atmosphere.ground_albedo: a daylight background.ground gives the ground's albedo "
+                            "(background.ground.albedo); give it once")
+    return dataclasses.replace(atmosphere, ground_albedo=_number(ground, "albedo", 0.2, 0, 1, "background.ground"))
+
+
 def sun_spectrum(sun, wl, atmosphere=None):
     """The sun's irradiance at the rain [W/(m²·nm)]: the shared daylight (``"spectrum":
     "daylight"``: ASTM G173's sun through the refracted path at its elevation, in the
@@ -485,7 +502,7 @@ def sky_parameters(scene, wavelengths, *, width=None, height=None, sun_samples=N
     if not isinstance(background, dict):
         raise ArgumentError("scene: 'background' must be an object")
     sky_file, sky_scale = _sky_image(background.get("sky"), base_dir)
-    atmosphere = atmosphere_of(scene)
+    atmosphere = ground_lit_atmosphere(scene)
     sun_zenith = 90.0 - _number(sun, "elevation_deg", 10.0, where="sun")
     daylight_sky = None
     if _daylight_kind(background.get("sky"), "background.sky"):
