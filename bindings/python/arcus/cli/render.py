@@ -3,6 +3,7 @@ through curved light, an ocean scene, a rainbow sky — to the formats the outpu
 ask for (.png, .jpg, .exr, .hdr)."""
 
 import argparse
+import math
 import shutil
 import tempfile
 import time
@@ -251,15 +252,22 @@ def write_profile(path, result, doc):
     import matplotlib.pyplot as plt
     fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(5.2, 3.9), height_ratios=(2, 1))
     theta = profile["theta"]
-    top.plot(theta, profile["Y"] / profile["Y"].max(), color="k", lw=1)
+    # Relative to the sky's brightest beyond 1° from the sun: the sun's disc and its
+    # aureole, when in the frame, would flatten everything else.
+    away = theta >= 1.0
+    top.plot(theta, profile["Y"] / (profile["Y"][away] if away.any() else profile["Y"]).max(), color="k", lw=1)
     bottom.plot(theta, profile["x"], color="tab:red", lw=1, label="x")
     bottom.plot(theta, profile["y"], color="tab:green", lw=1, label="y")
-    for low, high, label in sky.reference_angles(doc):
+    last = -math.inf
+    for low, high, label in sorted(sky.reference_angles(doc)):
         if high < theta.min() or low > theta.max():
             continue
         for ax in (top, bottom):
             ax.axvspan(low, high, color="tab:blue", alpha=0.15, lw=0)
-        top.annotate(label, (0.5 * (low + high), 1.02), ha="center", va="bottom", fontsize=7, color="tab:blue",
+        # Labels of neighbouring spans (the two bows, 9° apart) one above the other.
+        height = 1.12 if low - last < 0.15 * (theta.max() - theta.min()) else 1.02
+        last = low
+        top.annotate(label, (0.5 * (low + high), height), ha="center", va="bottom", fontsize=7, color="tab:blue",
                      annotation_clip=False)
     top.set_ylabel("luminance (relative)")
     top.set_ylim(0, 1.1)
