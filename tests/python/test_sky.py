@@ -338,3 +338,14 @@ def test_the_reference_angles_are_the_closed_forms_of_each_scenes_particles():
     assert 45.0 < halos["46° halo"][0] < halos["46° halo"][1] < 48.0
     (low, high, label), = sky.reference_angles(SCENES / "sundogs.json")  # the sun 20° up
     assert label == "parhelia" and halos["22° halo"][1] < low < high < 24.0
+
+
+def test_a_daylight_ground_is_the_atmospheres_ground_given_once():
+    # The ground a rainbow scene shows (background.ground, albedo 0.2 by default) is the
+    # one that lights its sky back; an atmosphere.ground_albedo beside it is refused.
+    scene = sky.load_scene(SCENES / "double_bow.json")
+    assert sky.ground_lit_atmosphere(scene).ground_albedo == scene["background"]["ground"].get("albedo", 0.2)
+    scene["atmosphere"] = dict(scene.get("atmosphere", {}), ground_albedo=0.5)
+    with pytest.raises(arcus.ArgumentError) as e:
+        sky.ground_lit_atmosphere(scene)
+    assert "atmosphere.ground_albedo" in str(e.value) and "background.ground.albedo" in str(e.value)
