@@ -82,6 +82,7 @@ std::array<float, 3> MipPyramid::sample(double u, double v, double du_x, double 
     my = by;
   }
   if (!(major > 1e-12)) return trilinear(0, u, v);
+  if (!std::isfinite(major)) return trilinear(static_cast<double>(levels_.size() - 1), u, v);  // the mean
   minor = std::max(minor, major / kMaxSamples);
   const int n = std::clamp(static_cast<int>(std::ceil(major / minor)), 1, kMaxSamples);
   const double level = std::log2(std::max(minor, 1.0));

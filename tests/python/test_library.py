@@ -175,7 +175,7 @@ int main(void) {
   printf("arcus_daylight_desc %zu\n", sizeof(arcus_daylight_desc));
   F(arcus_daylight_desc, site_height) F(arcus_daylight_desc, ozone_du) F(arcus_daylight_desc, aerosol_depth_500)
   F(arcus_daylight_desc, angstrom_exponent) F(arcus_daylight_desc, aerosol_scale_height) F(arcus_daylight_desc, co2_ppm)
-  F(arcus_daylight_desc, aerosol_albedo) F(arcus_daylight_desc, aerosol_asymmetry)
+  F(arcus_daylight_desc, aerosol_albedo) F(arcus_daylight_desc, aerosol_asymmetry) F(arcus_daylight_desc, ground_albedo)
   printf("arcus_optical_depths %zu\n", sizeof(arcus_optical_depths));
   F(arcus_optical_depths, rayleigh) F(arcus_optical_depths, ozone) F(arcus_optical_depths, aerosol)
   return 0;

@@ -99,6 +99,8 @@ TEST(MipPyramid, EveryLevelKeepsTheImagesMeanAndAFlatTextureStaysFlat) {
   // A footprint 4 texels each way reads level 2, where 2×2 means of a checker are ½.
   const auto c = mip.sample(0.3, 0.6, 4.0 / 64, 0, 0, 4.0 / 32);
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], 0.5, 1e-6);
+  // An endless footprint reads the 1×1 level: the image's mean.
+  EXPECT_NEAR(mip.sample(0.3, 0.6, INFINITY, 0, 0, 1.0)[0], 0.5, 1e-6);
   const MipPyramid flat(flat_image(50, 30, 0.2f, 0.4f, 0.6f));  // odd sizes: the edge repeats
   for (double size : {0.0, 0.01, 0.3, 5.0}) {
     const auto f = flat.sample(0.91, 0.07, size, 0.3 * size, -0.2 * size, size);
