@@ -16,7 +16,7 @@ import pytest
 
 import arcus
 import arcus.mie as mie
-from arcus import sky
+from arcus import sky, sky_profile
 
 from conftest import BINDINGS
 
@@ -316,27 +316,27 @@ def test_the_radial_profile_is_each_bins_mean_light():
     theta = np.array([[0.05, 0.15], [0.16, 0.35]])
     xyz = np.array([[[1, 1, 1], [2, 2, 0]], [[0, 4, 2], [3, 3, 3]]], dtype=float)
     image = sky.SkyImage(image=xyz, xyz=xyz, theta=theta, table=None, features=frozenset(), seconds={})
-    p = sky.radial_profile(image, 0.1)
+    p = sky_profile.radial_profile(image, 0.1)
     np.testing.assert_allclose(p["theta"], [0.05, 0.15, 0.35])
     np.testing.assert_array_equal(p["pixels"], [1, 2, 1])
     np.testing.assert_allclose(p["Y"], [1, 3, 3])
     np.testing.assert_allclose(p["x"], [1 / 3, 1 / 5, 1 / 3])  # the second bin's mean XYZ: (1, 3, 1)
     np.testing.assert_allclose(p["y"], [1 / 3, 3 / 5, 1 / 3])
     with pytest.raises(arcus.ArgumentError):
-        sky.radial_profile(image, 0)
+        sky_profile.radial_profile(image, 0)
 
 
 def test_the_reference_angles_are_the_closed_forms_of_each_scenes_particles():
     # Descartes' bows of water (137.6–139.4° and 126.4–129.8° over 400–700 nm), the
     # minimum deviations of ice's 60° and 90° prisms (21.6–22.6°, 45.1–47.8°), and for
     # plates with vertical axes Bravais' parhelia, farther out as the sun rises.
-    bows = sky.reference_angles(SCENES / "twinned.json")  # two populations of drops, named once
+    bows = sky_profile.reference_angles(SCENES / "twinned.json")  # two populations of drops, named once
     assert [label for _, _, label in bows] == ["primary bow", "secondary bow"]
     assert 137.4 < bows[0][0] < bows[0][1] < 139.6 and 126.2 < bows[1][0] < bows[1][1] < 130.0
-    halos = {label: (low, high) for low, high, label in sky.reference_angles(SCENES / "halo.json")}
+    halos = {label: (low, high) for low, high, label in sky_profile.reference_angles(SCENES / "halo.json")}
     assert 21.5 < halos["22° halo"][0] < halos["22° halo"][1] < 22.7
     assert 45.0 < halos["46° halo"][0] < halos["46° halo"][1] < 48.0
-    (low, high, label), = sky.reference_angles(SCENES / "sundogs.json")  # the sun 20° up
+    (low, high, label), = sky_profile.reference_angles(SCENES / "sundogs.json")  # the sun 20° up
     assert label == "parhelia" and halos["22° halo"][1] < low < high < 24.0
 
 

@@ -9,7 +9,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from .. import _scene_file, image, ocean, sky
+from .. import _scene_file, image, ocean, sky, sky_profile
 from .._errors import ArgumentError
 from ..context import Context
 from ..progress import Progress
@@ -235,10 +235,10 @@ def check_profile(path):
 
 
 def write_profile(path, result, doc):
-    """The rendered sky's radial profile (arcus.sky.radial_profile, 0.1° bins): a CSV of
+    """The rendered sky's radial profile (arcus.sky_profile.radial_profile, 0.1° bins): a CSV of
     θ, Y, x, y, pixels, or a plot of Y (relative to its largest) and x, y against θ with
-    the closed forms' angles (arcus.sky.reference_angles) shaded."""
-    profile = sky.radial_profile(result, 0.1)
+    the closed forms' angles (arcus.sky_profile.reference_angles) shaded."""
+    profile = sky_profile.radial_profile(result, 0.1)
     path.parent.mkdir(parents=True, exist_ok=True)
     if path.suffix.lower() == ".csv":
         columns = ("theta", "Y", "x", "y", "pixels")
@@ -259,7 +259,7 @@ def write_profile(path, result, doc):
     bottom.plot(theta, profile["x"], color="tab:red", lw=1, label="x")
     bottom.plot(theta, profile["y"], color="tab:green", lw=1, label="y")
     last = -math.inf
-    for low, high, label in sorted(sky.reference_angles(doc)):
+    for low, high, label in sorted(sky_profile.reference_angles(doc)):
         if high < theta.min() or low > theta.max():
             continue
         for ax in (top, bottom):
