@@ -165,6 +165,24 @@ ARCUS_API arcus_status arcus_job_get_rainbow_phasors(arcus_job_t* job, size_t co
 ARCUS_API arcus_status arcus_job_get_rainbow_glints(arcus_job_t* job, size_t* count, uint32_t* terms,
                                                     double* directions, double* areas, double* cross_sections);
 
+/* The glints of a convex flat-faced particle (arcus_particle_create_mesh with smooth = 0:
+ * an ice crystal) in each of `count` orientations, traced as beams instead of a grid of
+ * rays: each face the light enters is followed as a polygon and cut exactly among the
+ * faces it reaches at every internal reflection, so each glint's area and power are
+ * exact, not a grid's count of rays, and an orientation costs a few hundred polygon
+ * clips.  rotations [count × 9]: particle → world, row-major, as
+ * arcus_rainbow_params.rotation; the light travels along +z.  From params:
+ * wavelength_nm, material, temperature_k, refractive_index, max_bounces and progress;
+ * the grid's fields are not used.  The job answers arcus_job_get_rainbow_glints (every
+ * orientation's glints, orientation by orientation) and arcus_job_get_rainbow_stats:
+ * intercepted, the shadows' mean area [m²]; scattered[p] and remaining, fractions of
+ * all the shadows' light; rays, the beam pieces traced; cast_seconds; the rest 0.
+ * Runs on the host's cores.  count is 1 to 65536 per call; a particle that is not
+ * convex is refused. */
+ARCUS_API arcus_status arcus_rainbow_trace_beams(arcus_context_t* ctx, arcus_particle_t* particle,
+                                                 const arcus_rainbow_params* params, size_t count,
+                                                 const double* rotations, arcus_job_t** job);
+
 /* ---- rainbow skies (thesis §4.1.4, §5.5.2) --------------------------------------- */
 /* The rain's single scattering as a table: the volume scattering function
  * β(λ, φ, θ) = Σ_sizes N·C_sca·p(θ, φ) [1/(m·sr)] of the drops (or crystals) per unit

@@ -1,6 +1,7 @@
 // The rainbow engine's C API (include/arcus/arcus_rainbow.h): particles, the cast, sky renders, the
 // collecting sphere's queries, refractive indices and Lorenz–Mie with the Debye series.
 #include <algorithm>
+#include <chrono>
 #include <climits>
 #include <cmath>
 #include <complex>
@@ -14,6 +15,7 @@
 #include "core/format.h"
 #include "geometry/mesh_handle.h"
 #include "image/image_io.h"
+#include "rainbow/beams.h"
 #include "rainbow/cast.h"
 #include "rainbow/mie.h"
 #include "rainbow/particle.h"
@@ -217,6 +219,54 @@ arcus_status arcus_rainbow_cast(arcus_context_t* ctx, arcus_particle_t* particle
     *job = j.release();
     if (!cancelled) return ARCUS_SUCCESS;
     *message = "the progress callback cancelled the cast: the job holds no patches";
+    return ARCUS_ERROR_CANCELLED;
+  });
+}
+
+arcus_status arcus_rainbow_trace_beams(arcus_context_t* ctx, arcus_particle_t* particle,
+                                       const arcus_rainbow_params* params, size_t count, const double* rotations,
+                                       arcus_job_t** job) {
+  return on<arcus_context_s>(ctx, arcus::kContextHandle, "ctx", [&](arcus_context_s*, std::string* message) {
+    require_pointer(job, "job");
+    *job = nullptr;
+    require_pointer(params, "params");
+    auto* p = object_of<arcus_particle_s>(ctx, particle, arcus::rainbow::kParticleHandle, "particle");
+    require(count >= 1 && count <= 65536, "count must be 1 to 65536 orientations, got " + std::to_string(count));
+    require_pointer(rotations, "rotations");
+    for (size_t o = 0; o < count; ++o)
+      rainbow::check_rotation(rotations + 9 * o, "rotations[" + std::to_string(o) + "]");
+    const double temperature_k =
+        std::isfinite(params->temperature_c) ? params->temperature_c + kCelsiusZero : params->temperature_k;
+    const double n = index_of(params->material, params->wavelength_nm, temperature_k, params->refractive_index);
+    require(std::isfinite(n) && n > 1 && n < 4, "the refractive index must lie in (1, 4) relative to air, got " +
+                                                    number(n));
+    require(params->max_bounces <= ARCUS_RAINBOW_MAX_BOUNCES,
+            "max_bounces must be 0 to " + std::to_string(ARCUS_RAINBOW_MAX_BOUNCES) + ", got " +
+                std::to_string(params->max_bounces));
+    const std::vector<rainbow::ConvexFace> faces = rainbow::convex_faces(p->particle);
+    const auto t0 = std::chrono::steady_clock::now();
+    auto j = std::make_unique<rainbow::RainbowJob>(ctx);
+    const int bounces = static_cast<int>(params->max_bounces);
+    j->terms = bounces + 1;
+    j->wave_number = 2 * 3.14159265358979323846 / (params->wavelength_nm * 1e-9);
+    j->count = count;
+    rainbow::BeamTotals books;
+    const bool cancelled =
+        rainbow::trace_beams(faces, n, bounces, count, rotations, j->glints, books, params->progress,
+                             params->progress_user);
+    arcus_rainbow_stats& info = j->info;
+    info.refractive_index = n;
+    info.rays = books.beams;
+    info.intercepted = books.intercepted / double(count);
+    for (int t = 0; t < 16; ++t) info.scattered[t] = books.intercepted > 0 ? books.scattered[t] / books.intercepted : 0;
+    info.remaining = books.intercepted > 0 ? books.remaining / books.intercepted : 0;
+    info.cast_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    j->stats.total_seconds = info.cast_seconds;
+    j->cross_section = (books.intercepted - books.remaining - books.dropped) / double(count);
+    arcus::retain_context(ctx);  // the job's reference
+    *job = j.release();
+    if (!cancelled) return ARCUS_SUCCESS;
+    *message = "the progress callback cancelled the beam trace: the job holds the orientations traced so far";
     return ARCUS_ERROR_CANCELLED;
   });
 }

@@ -193,20 +193,23 @@ void check_cast(const CastParams& p) {
   require(p.bounces >= 0 && p.bounces <= ARCUS_RAINBOW_MAX_BOUNCES,
           "max_bounces must be 0 to " + std::to_string(ARCUS_RAINBOW_MAX_BOUNCES) + ", got " +
               std::to_string(p.bounces));
-  // A rotation: orthonormal with determinant +1, to rounding.
-  const double* m = p.rotation;
-  for (int i = 0; i < 9; ++i) require(std::isfinite(m[i]), "rotation holds a non-finite entry");
+  check_rotation(p.rotation, "rotation");
+  require(std::isnan(p.query_phi_deg) || std::isfinite(p.query_phi_deg),
+          "query_phi_deg must be finite or NaN (every azimuth)");
+}
+
+void check_rotation(const double* m, const std::string& name) {
+  // orthonormal with determinant +1, to rounding
+  for (int i = 0; i < 9; ++i) require(std::isfinite(m[i]), name + " holds a non-finite entry");
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       const double dot = m[i] * m[j] + m[3 + i] * m[3 + j] + m[6 + i] * m[6 + j];
-      require(std::fabs(dot - (i == j)) < 1e-9, "rotation is not orthonormal (columns " + std::to_string(i) +
+      require(std::fabs(dot - (i == j)) < 1e-9, name + " is not orthonormal (columns " + std::to_string(i) +
                                                      ", " + std::to_string(j) + " give " + number(dot) + ")");
     }
   const double det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
                      m[2] * (m[3] * m[7] - m[4] * m[6]);
-  require(det > 0, "rotation is a reflection (determinant " + number(det) + "), not a rotation");
-  require(std::isnan(p.query_phi_deg) || std::isfinite(p.query_phi_deg),
-          "query_phi_deg must be finite or NaN (every azimuth)");
+  require(det > 0, name + " is a reflection (determinant " + number(det) + "), not a rotation");
 }
 
 std::unique_ptr<RainbowJob> cast(arcus_context_t* ctx, const Particle& particle, const CastParams& params,

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "arcus/arcus_rainbow.h"
@@ -27,6 +28,9 @@ struct CastParams {
 };
 
 void check_cast(const CastParams& params);
+// A rotation matrix (9 reals, row-major): finite, orthonormal, determinant +1, to
+// rounding; the message names it `name`.
+void check_rotation(const double* rotation, const std::string& name);
 
 // A flat-faced mesh in one orientation sends all the rays of one sequence of faces
 // into one direction: a glint, which no patch can hold.  Its books: the term, the

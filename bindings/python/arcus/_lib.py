@@ -197,6 +197,8 @@ _PROTOTYPES = {
     "arcus_job_get_rainbow_phase": (_status, [_handle, c_size_t, _dvec, _dvec, c_int32, _dvec, _dvec, _dvec]),
     "arcus_job_get_rainbow_phasors": (_status, [_handle, c_size_t, _dvec, _dvec, _dvec]),
     "arcus_job_get_rainbow_glints": (_status, [_handle, POINTER(c_size_t), POINTER(c_uint32), _dvec, _dvec, _dvec]),
+    "arcus_rainbow_trace_beams": (_status, [_handle, _handle, POINTER(RainbowParamsStruct), c_size_t, _dvec,
+                                            _out_handle]),
     "arcus_rainbow_sky_init": (_status, [POINTER(RainbowSkyStruct)]),
     "arcus_rainbow_render": (_status, [_handle, POINTER(RainbowTableStruct), POINTER(RainbowSkyStruct), _out_handle]),
     "arcus_job_get_rainbow_image": (

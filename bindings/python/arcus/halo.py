@@ -13,10 +13,12 @@
     print(t["phase"], t["cross_section"], halo.halo_angle(550.0))   # the 22° halo's edge, 21.92°
 
 Geometric optics without interference or diffraction (crystals of 10-100 µm are many
-wavelengths across): each orientation is one cast of :func:`arcus.rainbow.phase_function`
-at a flat-faced :class:`arcus.rainbow.Mesh`, whose light leaves as glints (every ray of
-one sequence of faces in one direction); the glints of all orientations, weighted by
-their power, are shared linearly between the θ (and φ) samples asked for around them.
+wavelengths across): a flat-faced :class:`arcus.rainbow.Mesh`'s light leaves as glints
+(every ray of one sequence of faces in one direction), traced as beams, exactly, by
+:func:`arcus.rainbow.trace_beams` (``method="grid"``: one grid cast of
+:func:`arcus.rainbow.phase_function` per orientation, right to O(1/grid) and ~18 times
+slower); the glints of all orientations, weighted by their power, are shared linearly
+between the θ (and φ) samples asked for around them.
 The orientations are quasi-random (a scrambled Halton sequence) and, for randomly
 oriented crystals, confined to the prism's symmetry wedge, which leaves the table the
 same and makes it converge many times faster than independent draws.  The 22° halo is the light of term p = 1 (two refractions, no internal
@@ -61,13 +63,17 @@ ORIENTATIONS = ("random", "horizontal")
 SPEC_DEFAULTS = {"kind": "crystal", "size": 50e-6, "orientation": "random", "tilt_deg": 1.0,
                  "sun_elevation_deg": 0.0, "orientations": 2000, "seed": 1, "first_orientation": 0}
 SPEC_KEYS = ("kind", "shape") + tuple(k for k in SPEC_DEFAULTS if k != "kind")
-#: Rays per side of each orientation's cast.  A glint's power is the cast area of its
+#: Rays per side of each orientation's cast (``method="grid"``).  A glint's power is the cast area of its
 #: rays times the Fresnel products of its faces, the same for every ray of a flat face
 #: sequence, so the grid enters only through the areas of the faces' regions (cells on
 #: their boundaries: O(1/grid)).  At 64 a face's power is within ~1.5%, and the
 #: orientation-averaged terms' shares within 1% of grid 384's; 48 is ~1.5x cheaper and
 #: ~1.3x less accurate.
 GRID = 64
+#: How a table's glints are found: traced as beams (exact) or cast as a grid of rays.
+METHODS = ("beams", "grid")
+#: Orientations per beam trace: ~500 glints each, so a batch's arrays stay near 100 MB.
+BEAM_BATCH = 4096
 #: Terms p = 0..P traced: at 8 under 1% of the light is still inside a column (3: 9%).
 MAX_BOUNCES = 8
 #: The cast grid's warp (arcus.rainbow's alpha): uniform, as suits a polygonal shadow.
@@ -353,8 +359,8 @@ def _linear_deposit(x, first, step, count, periodic):
             (np.where(covered, k1, -1), np.where(covered, w1, 0.0))]
 
 
-def crystal_table(spec, wavelength, theta, phi=None, *, grid=GRID, max_bounces=MAX_BOUNCES, edge_rays=True,
-                  rotations=None, context=None):
+def crystal_table(spec, wavelength, theta, phi=None, *, method="beams", grid=GRID, max_bounces=MAX_BOUNCES,
+                  edge_rays=True, rotations=None, context=None):
     """The orientation-averaged phase function and cross-sections of the ice crystals of
     ``spec`` at ``wavelength`` nm (one number, within ice's 199-1100 nm), in geometric
     optics (no diffraction, no interference).
@@ -379,9 +385,13 @@ def crystal_table(spec, wavelength, theta, phi=None, *, grid=GRID, max_bounces=M
             else uniformly spaced azimuths [deg] spanning at most 360°, bins centred on
             them (periodic): a 2-D table (F, T).  Randomly oriented crystals have no
             preferred azimuth: their 1-D table is repeated over φ.
-        grid: rays per side of each orientation's cast (see :data:`GRID`).
+        method: "beams" (the default): each orientation's glints traced as beams,
+            exactly (:func:`arcus.rainbow.trace_beams`); "grid": cast as a grid of
+            rays (:func:`arcus.rainbow.phase_function`), whose faces' shares are right
+            to O(1/grid), about 10 times slower at grid 32 (docs/benchmarks.md).
+        grid: "grid" only: rays per side of each orientation's cast (see :data:`GRID`).
         max_bounces: P, terms p = 0..P (p − 1 internal reflections).
-        edge_rays: arcus.rainbow's: grid points just outside the shadow move onto its
+        edge_rays: "grid" only, arcus.rainbow's: grid points just outside the shadow move onto its
             edge (on flat faces a thousandth of a cell inside it).  On (the default) the
             shares of the faces' light are right to about 1% at grid 64 and the books
             close; off, the cells along the silhouette are left out, which biases the
@@ -424,6 +434,8 @@ def crystal_table(spec, wavelength, theta, phi=None, *, grid=GRID, max_bounces=M
     two_d = phi is not None
     if two_d:
         phi, phi0, dphi = _uniform(phi, "phi", None, None, periodic=True)
+    if method not in METHODS:
+        raise ArgumentError("method must be one of %s, got %r" % (", ".join(map(repr, METHODS)), method))
     grid = to_int(grid, "grid", 4, 8192)
     max_bounces = to_int(max_bounces, "max_bounces", 0, rainbow.MAX_BOUNCES)
     t_start = time.perf_counter()
@@ -442,55 +454,76 @@ def crystal_table(spec, wavelength, theta, phi=None, *, grid=GRID, max_bounces=M
     # the light (+z) in each crystal's frame: Rᵀ z
     exact = projected_areas(vertices, triangles, rotations[:, 2, :]) * spec["size"] ** 2
 
-    directions, terms, powers = [], [], []
-    remaining = lost = cast_area = 0.0
-    query = np.zeros(1)
-    with _owned_context(context) as ctx:
-        for rotation, area in zip(rotations, exact):
-            r = rainbow.phase_function(mesh, wavelength, query, grid=grid, max_bounces=max_bounces, material="ice",
-                                       rotation=rotation, coherent=False, alpha=ALPHA, edge_rays=edge_rays,
-                                       context=ctx)
-            cast = r.stats["intercepted"]
-            if not cast > 0:
-                raise ArgumentError("grid %d is too coarse: a cast missed the crystal" % grid)
-            cast_area += cast
-            remaining += r.stats["remaining"] * area
-            lost += (1 - float(np.sum(r.stats["scattered"])) - r.stats["remaining"]) * area
-            g = r.glints
-            if g is not None:
-                directions.append(g["direction"])
-                terms.append(g["term"])
-                powers.append(g["cross_section"] * (area / cast))
-    count = len(rotations)
-    intercepted = float(exact.mean())
-    d = np.concatenate(directions) if directions else np.zeros((0, 3))
-    p = np.concatenate(terms).astype(np.int64) if terms else np.zeros(0, dtype=np.int64)
-    w = np.concatenate(powers) if powers else np.zeros(0)
-    total = float(w.sum())
-
     # θ from +z, φ from +x toward +y; each glint's power shared between the two samples
     # that bracket it (in φ too, for 2-D tables of horizontal crystals)
-    th = np.degrees(np.arccos(np.clip(d[:, 2], -1.0, 1.0)))
     edges = np.clip(theta0 + dtheta * np.arange(theta.size + 1), 0.0, 180.0)
     ring = np.cos(np.radians(edges[:-1])) - np.cos(np.radians(edges[1:]))  # solid angle / Δφ
     terms_n = max_bounces + 1
-    th_cells = _linear_deposit(th, theta[0], dtheta, theta.size, periodic=False)
-    if two_d and spec["orientation"] != "random":
+    by_phi = two_d and spec["orientation"] != "random"
+    hist = np.zeros(terms_n * (phi.size if by_phi else 1) * theta.size)
+
+    def deposit(d, p, w):
+        p = p.astype(np.int64)
+        th = np.degrees(np.arccos(np.clip(d[:, 2], -1.0, 1.0)))
+        th_cells = _linear_deposit(th, theta[0], dtheta, theta.size, periodic=False)
+        if not by_phi:
+            for ti, tw in th_cells:
+                ok = ti >= 0
+                hist[:] += np.bincount(p[ok] * theta.size + ti[ok], weights=(w * tw)[ok], minlength=hist.size)
+            return
         ph = np.degrees(np.arctan2(d[:, 1], d[:, 0]))
         whole_circle = abs(phi.size * dphi - 360.0) < 1e-9
         ph_cells = _linear_deposit(np.mod(ph - phi0, 360.0) + phi0, phi[0], dphi, phi.size, whole_circle)
-        hist = np.zeros(terms_n * phi.size * theta.size)
         for ti, tw in th_cells:
             for fi, fw in ph_cells:
                 ok = (ti >= 0) & (fi >= 0)
                 flat = (p[ok] * phi.size + fi[ok]) * theta.size + ti[ok]
-                hist += np.bincount(flat, weights=(w * tw * fw)[ok], minlength=hist.size)
+                hist[:] += np.bincount(flat, weights=(w * tw * fw)[ok], minlength=hist.size)
+
+    total = remaining = lost = cast_area = 0.0
+    with _owned_context(context) as ctx:
+        if method == "beams":
+            for first in range(0, len(rotations), BEAM_BATCH):
+                batch = rotations[first:first + BEAM_BATCH]
+                g = rainbow.trace_beams(mesh, wavelength, batch, max_bounces=max_bounces, material="ice", context=ctx)
+                deposit(g["direction"], g["term"], g["cross_section"])
+                shadows = g["stats"]["intercepted"] * len(batch)
+                total += float(g["cross_section"].sum())
+                cast_area += shadows
+                remaining += g["stats"]["remaining"] * shadows
+                lost += (1 - float(np.sum(g["stats"]["scattered"])) - g["stats"]["remaining"]) * shadows
+        else:
+            query = np.zeros(1)
+            pending = []  # glints deposited a few hundred orientations at a time
+
+            def flush():
+                if pending:
+                    deposit(*(np.concatenate(column) for column in zip(*pending)))
+                    pending.clear()
+
+            for rotation, area in zip(rotations, exact):
+                r = rainbow.phase_function(mesh, wavelength, query, grid=grid, max_bounces=max_bounces,
+                                           material="ice", rotation=rotation, coherent=False, alpha=ALPHA,
+                                           edge_rays=edge_rays, context=ctx)
+                cast = r.stats["intercepted"]
+                if not cast > 0:
+                    raise ArgumentError("grid %d is too coarse: a cast missed the crystal" % grid)
+                cast_area += cast
+                remaining += r.stats["remaining"] * area
+                lost += (1 - float(np.sum(r.stats["scattered"])) - r.stats["remaining"]) * area
+                g = r.glints
+                if g is not None:
+                    power = g["cross_section"] * (area / cast)
+                    pending.append((g["direction"], g["term"], power))
+                    total += float(power.sum())
+                    if len(pending) == 256:
+                        flush()
+            flush()
+    count = len(rotations)
+    intercepted = float(exact.mean())
+    if by_phi:
         per_term = hist.reshape(terms_n, phi.size, theta.size) / (ring * math.radians(dphi))
     else:
-        hist = np.zeros(terms_n * theta.size)
-        for ti, tw in th_cells:
-            ok = ti >= 0
-            hist += np.bincount(p[ok] * theta.size + ti[ok], weights=(w * tw)[ok], minlength=hist.size)
         per_term = hist.reshape(terms_n, theta.size) / (ring * 2 * math.pi)
         if two_d:  # random orientation: no preferred azimuth
             per_term = np.repeat(per_term[:, None, :], phi.size, axis=1)
@@ -509,6 +542,7 @@ def crystal_table(spec, wavelength, theta, phi=None, *, grid=GRID, max_bounces=M
         "wavelength": wavelength,
         "refractive_index": n,
         "spec": spec,
+        "method": method,
         "grid": grid,
         "max_bounces": max_bounces,
         "cast_area_ratio": float(cast_area / exact.sum()),

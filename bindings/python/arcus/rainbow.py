@@ -319,6 +319,84 @@ def _rotation(rotation):
     return [float(v) for v in r.ravel()]
 
 
+def _material_params(wavelength, material, temperature_k, temperature, refractive_index):
+    """arcus_rainbow_params at ``wavelength`` nm with the particle's material (see
+    :func:`phase_function`), the rest at their defaults."""
+    params = _lib.RainbowParamsStruct()
+    _lib.check(lib.arcus_rainbow_params_init(byref(params)))
+    params.wavelength_nm = wavelength
+    params.temperature_k = water_temperature_k(temperature_k, temperature)
+    m = _material(material)
+    if refractive_index is not None:
+        if m != MATERIALS["water"] and m != MATERIALS["fixed"]:
+            raise ArgumentError("refractive_index and material=%r exclude one another" % (material,))
+        params.material = MATERIALS["fixed"]
+        params.refractive_index = to_float(refractive_index, "refractive_index")
+    elif m == MATERIALS["fixed"]:
+        raise ArgumentError("material='fixed' needs refractive_index")
+    else:
+        params.material = m
+    return params
+
+
+def _read_glints(ctx, job):
+    """A job's glints as a dict of arrays (term, direction, area, cross_section), or None."""
+    n_glints = c_size_t(0)
+    ctx._check(lib.arcus_job_get_rainbow_glints(job, byref(n_glints), None, None, None, None))
+    if not n_glints.value:
+        return None
+    g_term = np.zeros(n_glints.value, dtype=np.uint32)
+    g_dir, g_area, g_cross = np.zeros((n_glints.value, 3)), np.zeros(n_glints.value), np.zeros(n_glints.value)
+    ctx._check(lib.arcus_job_get_rainbow_glints(
+        job, byref(n_glints), g_term.ctypes.data_as(POINTER(c_uint32)), _lib.ptr(g_dir), _lib.ptr(g_area),
+        _lib.ptr(g_cross)))
+    return dict(term=g_term, direction=g_dir, area=g_area, cross_section=g_cross)
+
+
+def trace_beams(particle, wavelength, rotations, max_bounces=3, material="ice", temperature_k=293.15,
+                refractive_index=None, context=None, progress=None):
+    """The glints of a convex flat-faced :class:`Mesh` (an ice crystal) at ``wavelength``
+    nm in each of ``rotations`` ((N, 3, 3) particle -> world, the light along +z; N up to
+    65536), traced as beams (arcus_rainbow_trace_beams): each face the light enters is
+    followed as a polygon, cut exactly among the faces it meets, so the glints' areas and
+    powers are exact where :func:`phase_function`'s grid counts rays.
+
+    Returns a dict: ``term``, ``direction`` (N_g, 3), ``area`` (the incident
+    cross-section feeding each glint, m²) and ``cross_section`` (its power per unit
+    irradiance, m²) of every orientation's glints in turn, and ``stats`` (intercepted:
+    the shadows' mean area; scattered (P+1,) and remaining: fractions of it; rays: the
+    beam pieces traced; cast_seconds)."""
+    if not isinstance(particle, Mesh):
+        raise ArgumentError("particle must be an arcus.rainbow Mesh with flat faces, got %r" % (particle,))
+    wl = to_float(wavelength, "wavelength")
+    r = to_real_array(rotations, "rotations")
+    if r.ndim != 3 or r.shape[1:] != (3, 3) or not 1 <= len(r) <= 65536:
+        raise ArgumentError("rotations must be an array of shape (N, 3, 3), N from 1 to 65536, got %s" % (r.shape,))
+    r = np.ascontiguousarray(r, dtype=float)
+    params = _material_params(wl, material, temperature_k, None, refractive_index)
+    params.max_bounces = to_int(max_bounces, "max_bounces", 0, 2 ** 32 - 1)
+    _check_progress(progress)
+    with _owned_context(context) as ctx:
+        handle = particle._handle_on(ctx)
+
+        def start(callback, job_out):
+            params.progress = callback
+            return lib.arcus_rainbow_trace_beams(ctx._handle, handle, byref(params), len(r), _lib.ptr(r), job_out)
+
+        def read(job):
+            s = _lib.RainbowStatsStruct()
+            ctx._check(lib.arcus_job_get_rainbow_stats(job, byref(s)))
+            glints = _read_glints(ctx, job) or dict(term=np.zeros(0, dtype=np.uint32), direction=np.zeros((0, 3)),
+                                                    area=np.zeros(0), cross_section=np.zeros(0))
+            glints["stats"] = {"intercepted": s.intercepted,
+                               "scattered": np.array(s.scattered[:params.max_bounces + 1]),
+                               "remaining": s.remaining, "rays": s.rays, "cast_seconds": s.cast_seconds,
+                               "refractive_index": s.refractive_index}
+            return glints
+
+        return ctx._run_job(start, progress, False, "arcus_rainbow_trace_beams", reader=read)
+
+
 def phase_function(particle, wavelength, theta, phi=None, grid=1000, max_bounces=3, polarization="unpolarized",
                    alpha=0.3, edge_rays=True, material="water", temperature_k=293.15, refractive_index=None,
                    rotation=None, coherent=True, caustics="uniform", incident=None, context=None, progress=None,
@@ -370,20 +448,7 @@ def phase_function(particle, wavelength, theta, phi=None, grid=1000, max_bounces
         phis = _angles(phi, "phi", None, None)
         query_phi = math.nan if two_d else float(phis[0])
     polarization = to_choice(polarization, "polarization", POLARIZATIONS)
-    params = _lib.RainbowParamsStruct()
-    _lib.check(lib.arcus_rainbow_params_init(byref(params)))
-    params.wavelength_nm = wl
-    params.temperature_k = water_temperature_k(temperature_k, temperature)
-    m = _material(material)
-    if refractive_index is not None:
-        if m != MATERIALS["water"] and m != MATERIALS["fixed"]:
-            raise ArgumentError("refractive_index and material=%r exclude one another" % (material,))
-        params.material = MATERIALS["fixed"]
-        params.refractive_index = to_float(refractive_index, "refractive_index")
-    elif m == MATERIALS["fixed"]:
-        raise ArgumentError("material='fixed' needs refractive_index")
-    else:
-        params.material = m
+    params = _material_params(wl, material, temperature_k, temperature, refractive_index)
     params.grid = to_int(grid, "grid", 0, 2 ** 32 - 1)
     params.max_bounces = to_int(max_bounces, "max_bounces", 0, 2 ** 32 - 1)
     params.alpha = to_float(alpha, "alpha")
@@ -446,16 +511,7 @@ def phase_function(particle, wavelength, theta, phi=None, grid=1000, max_bounces
                 l_theta, l_phi = ix * e[:, 0] + iy * e[:, 2], ix * e[:, 1] + iy * e[:, 3]
                 cross = s.intercepted * float(np.sum(stats["scattered"]))
                 polarised = ((np.abs(l_theta) ** 2 + np.abs(l_phi) ** 2) / cross).reshape(shape)
-            n_glints = c_size_t(0)
-            ctx._check(lib.arcus_job_get_rainbow_glints(job, byref(n_glints), None, None, None, None))
-            glints = None
-            if n_glints.value:
-                g_term = np.zeros(n_glints.value, dtype=np.uint32)
-                g_dir, g_area, g_cross = np.zeros((n_glints.value, 3)), np.zeros(n_glints.value), np.zeros(n_glints.value)
-                ctx._check(lib.arcus_job_get_rainbow_glints(
-                    job, byref(n_glints), g_term.ctypes.data_as(POINTER(c_uint32)), _lib.ptr(g_dir), _lib.ptr(g_area),
-                    _lib.ptr(g_cross)))
-                glints = dict(term=g_term, direction=g_dir, area=g_area, cross_section=g_cross)
+            glints = _read_glints(ctx, job)
             return PhaseResult(incident=polarised, glints=glints, theta=theta.copy(), phi=phis.copy() if two_d else float(phis[0]), parallel=par,
                                perpendicular=perp, unpolarized=par + perp, per_bounce=per.reshape(shape + (terms,)),
                                polarization=polarization, refractive_index=s.refractive_index, wavelength=wl,

@@ -245,7 +245,8 @@ def _phase_task(task):
     phi = np.array(task["phi"], dtype=np.float64) if isinstance(task["phi"], list) else task["phi"]
     kind = spec["kind"]
     if kind == "crystal":
-        r = halo.crystal_table(spec, wl, theta, phi, grid=grid, max_bounces=bounces, context=_worker_context())
+        r = halo.crystal_table(spec, wl, theta, phi, method=task["method"], max_bounces=bounces,
+                               context=_worker_context())
         return {k: r[k] for k in ("phase", "cross_section", "extinction", "intercepted", "remaining")}
     if kind == "sphere" and spec["method"] == "mie":
         n = None if spec["material"] == "water" else rainbow.refractive_index(spec["material"], wl, spec["temperature_k"])
@@ -298,7 +299,8 @@ def phase_tables(particles, wavelengths, theta, phi=None, *, grid=1000, max_boun
             :func:`arcus.halo.crystal_table`.  Mie ignores rotation and phi.
         phi: None (azimuth 0), one azimuth, or an array: tables over φ × θ.
         grid, max_bounces: the cast's rays per side and terms p = 0..P
-            (:func:`arcus.rainbow.phase_function`).
+            (:func:`arcus.rainbow.phase_function`); crystals trace beams, which need
+            no grid.
     """
     if not isinstance(particles, (list, tuple)) or not particles:
         raise ArgumentError("particles must be a non-empty list of particle dicts, got %r" % (particles,))
@@ -312,6 +314,11 @@ def phase_tables(particles, wavelengths, theta, phi=None, *, grid=1000, max_boun
     # A mesh's bytes key its tables too (the worker ignores them): an edited file is a new particle.
     files = [dict(file_sha256=_file_digest(s["path"])) if s["kind"] == "mesh" else {} for s in specs]
     shared = [_shared_theta_index(s, theta, phi) for s in specs]
+    # Crystals' glints are traced as beams (exact; the grid does not enter), named in
+    # their tasks so that tables cached from the grid casts before are not taken for them.
+    for s, f in zip(specs, files):
+        if s["kind"] == "crystal":
+            f["method"] = "beams"
     tasks = [dict(common, particle=_at_wavelength(s, j), wavelength=float(w),
                   theta=_theta_task(theta if k is None else SHARED_THETA), **f)
              for s, f, k in zip(specs, files, shared) for j, w in enumerate(wl)]
