@@ -42,6 +42,7 @@ RENDER_SCENES = [
     ("cross_room", "Curved photon mapping", "Thesis Fig. 5.14(d)."),
     ("sunset_spectral", "Spectral sunset", "Beyond the thesis' figures (§2.2)."),
 ]
+MIRAGES = ("inferior_mirage", "novaya_zemlya", "fata_morgana")
 WATERS = ["atlantic", "mediterranean", "baltic", "north_sea", "cdom_coastal"]
 SKIES = [
     ("double_bow", "Primary and secondary bows"),
@@ -84,8 +85,10 @@ def steps(full):
     for name, title, figure in RENDER_SCENES:
         square = [] if full else ["--width", "200", "--height", "200"]
         dims = square if name in ("novaya_zemlya", "cross_room") else size
+        # the mirages beside their rays (arcus.mirage_profile): the fan with and without the inversions
+        fan = ["--profile", "{out}/%s_rays.png" % name] if name in MIRAGES else []
         s.append(Step("Curved light and rendering through it", title, figure + " " + description(name),
-                      ["render", name, "-o", "{out}/%s.png" % name, "--quiet"] + dims, "render",
+                      ["render", name, "-o", "{out}/%s.png" % name, "--quiet"] + dims + fan, "render",
                       docs_image="render/inferior_mirage.png" if name == "inferior_mirage" else "",
                       expected_seconds=35.0))
     s.append(Step("Curved light and rendering through it", "Ray paths of a mirage",

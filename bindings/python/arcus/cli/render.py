@@ -9,7 +9,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from .. import _scene_file, image, ocean, sky, sky_profile
+from .. import _scene_file, image, mirage_profile, ocean, sky, sky_profile
 from .._errors import ArgumentError
 from ..context import Context
 from ..progress import Progress
@@ -54,7 +54,9 @@ def add(sub):
                    "the live preview (arcus view PATH)")
     p.add_argument("--profile", action="append", metavar="PATH", help="rainbow skies: also write the sky's "
                    "luminance and chromaticity against the angle from the sun, with where closed forms put its bows "
-                   "and halos (.png, .svg, .pdf: a plot; .csv: the numbers); may be given several times")
+                   "and halos; render scenes in air: the rays of the image's centre column, height against "
+                   "distance, beside the same rays without the inversions (.png, .svg, .pdf: a plot; .csv: the "
+                   "numbers); may be given several times")
     p.add_argument("--device", help="an OpenCL device: an index or part of its name (default: ARCUS_DEVICE, else "
                    "a GPU, else the CPU)")
     p.add_argument("--list", action="store_true", help="list the bundled scenes and exit")
@@ -139,7 +141,7 @@ def _refuse(args, flag, engine, why):
         raise ArgumentError("--%s does not apply to %s scenes: %s" % (flag.replace("_", "-"), engine, why))
 
 
-RAINBOW_ONLY = ("wavelengths", "orientations", "workers", "scheduler", "export_view", "profile")
+RAINBOW_ONLY = ("wavelengths", "orientations", "workers", "scheduler", "export_view")
 
 
 
@@ -149,16 +151,21 @@ def render_curved(ctx, path, doc, args, exr, png, bar):
     _refuse(args, "samples", "render", "they trace one ray per pixel")
     _refuse(args, "seed", "render", "they have no random numbers but their photons' fixed sequence")
     _refuse(args, "photons", "render", "a render scene's photon map is set in its file (\"photons\")")
+    if args.profile and doc.get("field", {}).get("type") != "atmosphere":
+        raise ArgumentError("--profile draws a render scene's rays through its air: %s's field is %r, not an "
+                            "atmosphere" % (path, doc.get("field", {}).get("type")))
     camera = doc["camera"]
     width = args.width or _scaled(camera["width"], args.quick)
     height = args.height or _scaled(camera["height"], args.quick)
     result = ctx.render(path, exr=exr, png=png, width=width, height=height, progress=bar)
+    for profile in args.profile or []:
+        mirage_profile.write_ray_fan(Path(profile), doc, context=ctx)
     return "%d × %d, %d rays traced" % (width, height, result.stats.get("rays_traced", 0))
 
 
 def render_ocean(ctx, path, doc, args, exr, png, bar):
-    for flag in RAINBOW_ONLY:
-        _refuse(args, flag, "ocean", "it applies to rainbow skies")
+    for flag in RAINBOW_ONLY + ("profile",):
+        _refuse(args, flag, "ocean", "it applies to rainbow skies and render scenes")
     camera = doc["view"]["camera"]
     camera["width"] = args.width or _scaled(camera["width"], args.quick)
     camera["height"] = args.height or _scaled(camera["height"], args.quick)
