@@ -239,11 +239,14 @@ TEST(SkyScattering, OverAReflectingGroundTheAtmosphereStillBalancesItsFlux) {
   // ground's own light scattered back: Hillaire's ground term in L2) and the rest leaves
   // at the top, as the air's upward light (lit by the ground too) plus the ground's own
   // light seen through the air, ρ·E↓·2∫T(μ)μdμ with T = exp(−τ/μ) (plane-parallel).  The
-  // sky's ground term is what is checked.  Hillaire's approximation treats the light
-  // the air and the ground pass back and forth as one isotropic series: measured, the
-  // balance closes within 1.1 % over ρ = 0.3 and overshoots by up to 11 % over snow
-  // (ρ = 0.8, 400 nm, the sun overhead); with the ground in L2 alone, as Hillaire has
-  // it, it fell short by up to 4.9 % and 14 %.  Bounds: 2 % and 12 %.
+  // sky's ground term is what is checked.  The light the air and the ground pass back
+  // and forth is Hillaire's isotropic series with ground steps that never follow one
+  // another (src/sky/scattering.cpp): measured, the balance closes within 1.9 % over
+  // ρ = 0.3 and 4.1 % over snow (ρ = 0.8, 400 nm, the sun 60° down); with the ground in
+  // L2 alone, as Hillaire has it, it fell short by up to 4.9 % and 14 %, and with the
+  // ground as one more scattering in his series it overshot by 11 % over snow.  Bounds:
+  // 2.5 % and 5 %.  (tests/python/test_sky_disort.py checks the same light against a
+  // discrete-ordinates solution.)
   Atmosphere ground = rayleigh_only(), top = ground;
   top.site_height_m = 80000;
   const std::vector<double> nm = {400, 550};
@@ -266,7 +269,7 @@ TEST(SkyScattering, OverAReflectingGroundTheAtmosphereStillBalancesItsFlux) {
         const double out = (1 - albedo) * down + up[k] + albedo * down * escape;
         std::printf("%3.0f nm, sun %2.0f deg, albedo %.1f: absorbed %.4f + air up %.4f + ground up %.4f = %.4f of %.4f\n",
                     nm[k], sun_deg, albedo, (1 - albedo) * down, up[k], albedo * down * escape, out, mu0);
-        EXPECT_NEAR(out / mu0, 1, albedo < 0.5 ? 0.02 : 0.12) << nm[k] << " nm, sun " << sun_deg << ", albedo " << albedo;
+        EXPECT_NEAR(out / mu0, 1, albedo < 0.5 ? 0.025 : 0.05) << nm[k] << " nm, sun " << sun_deg << ", albedo " << albedo;
       }
     }
   }
