@@ -131,3 +131,28 @@ def test_bad_views_are_refused(tmp_path, ctx):
     doc = dict(base, view=view(look_at=(0, 0, -10)))
     with pytest.raises(arcus.ArgumentError, match="look_at"):
         ocean.render(write_scene(tmp_path, doc), context=ctx)
+
+
+@pytest.mark.heavy
+def test_the_default_waters_noise_stays_where_it_was_measured(ctx, repo):
+    """Issue 22 asks for default water images within 5 % RMS of a 16× reference (sRGB);
+    they are not there yet (docs/benchmarks.md, "Underwater light").  This keeps the
+    level measured so that it cannot grow unseen: `north_sea` at its defaults (400 000
+    photons, k = 250, beam estimate) rendered at 128 × 96 with seeds 1 and 2, the sRGB
+    (after the scene's exposure) RMS of their difference over the image's RMS, over √2
+    for one image's noise: measured 14.7 % (seeds 1-3 pairwise: 14.7-14.9 %); luma (Rec.
+    709's weights of the sRGB values) 7.9 %.  Bounds: 17 % and 10 %."""
+    doc = json.loads((repo / "scenes" / "ocean" / "north_sea.json").read_text())
+    doc["view"]["camera"].update(width=128, height=96)
+    exposure = doc["view"]["march"]["exposure"]
+    images = []
+    for seed in (1, 2):
+        doc["photons"]["seed"] = seed
+        linear = np.clip(ocean.render(doc, context=ctx).image * exposure, 0, 1)
+        images.append(np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * linear ** (1 / 2.4) - 0.055))
+    a, b = images
+
+    def noise(x, y):
+        return float(np.sqrt(np.mean((x - y) ** 2) / np.mean(((x + y) / 2) ** 2)) / math.sqrt(2))
+    luma = [i @ np.array([0.2126, 0.7152, 0.0722]) for i in images]
+    assert noise(a, b) < 0.17 and noise(*luma) < 0.10, (noise(a, b), noise(*luma))

@@ -101,6 +101,12 @@ def steps(full):
                       ["render", "ocean/" + w, "-o", "{out}/%s.png" % w, "--quiet"]
                       + ([] if full else ["--width", "256", "--height", "192", "--photons", "200000"]), "ocean",
                       docs_image="ocean/mediterranean.png" if w == "mediterranean" else ""))
+        # beside it the same water's vertical profile under the sun and a sky
+        s.append(Step("Underwater light", "%s water under the sun: depth profiles" % w.replace("_", " ").title(),
+                      description("ocean/profiles/%s_sun" % w),
+                      ["ocean", "profile", "ocean/profiles/%s_sun" % w, "--out", "{out}", "--quiet"]
+                      + ([] if full else ["--photons", "100000"]), "ocean/%s_profile" % w,
+                      pictures=["profile.png"]))
     photons = [] if full else ["--photons", "100000"]
     s.append(Step("Underwater light", "Where the energy goes (Fig. 5.9)",
                   "The energy absorbed per interaction. " + description("ocean/fig5_9"),
