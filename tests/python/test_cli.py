@@ -65,13 +65,24 @@ def test_a_skys_profile_peaks_where_descartes_puts_the_primary_bow(tmp_path):
     assert image.read(tmp_path / "p.png").shape[2] == 3
 
 
+def test_a_mirages_profile_is_its_ray_fan(tmp_path):
+    """`arcus render SCENE --profile` for a render scene in air writes its rays with and
+    without the inversions (arcus.mirage_profile): a CSV of both fans and a plot."""
+    r = arcus_command("render", "inferior_mirage", "--quick", "-o", "m.png", "--profile", "rays.csv", "--profile",
+                      "rays.png", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    rows = np.genfromtxt(tmp_path / "rays.csv", delimiter=",", names=True)
+    assert set(np.unique(rows["inversions"])) == {0.0, 1.0} and (tmp_path / "rays.png").stat().st_size > 1000
+
+
 @pytest.mark.parametrize("args, words", [
     (["render", "no_such_scene"], ["no_such_scene"]),
     (["render", "inferior_mirage", "-o", "x.gif"], ["x.gif", ".png"]),
     (["render", "inferior_mirage", "--samples", "4"], ["--samples", "render"]),
     (["render", "mirage"], ["curved", "arcus trace"]),
     (["render", "rainbow/cloudbow", "--profile", "p.gif"], ["p.gif", ".csv"]),
-    (["render", "inferior_mirage", "--profile", "p.png"], ["--profile", "rainbow skies"]),
+    (["render", "ocean/atlantic", "--profile", "p.png"], ["--profile", "rainbow skies and render scenes"]),
+    (["render", "cross_room", "--profile", "p.png"], ["--profile", "cross_room.json", "not an atmosphere"]),
     (["render", "{typo}"], ["typo.json", "$.sun.sampels"]),
 ])
 def test_bad_input_exits_2_naming_what_is_wrong(tmp_path, repo, args, words):

@@ -212,6 +212,7 @@ def test_beams_give_each_face_its_fresnel_glint_exactly(ctx):
         assert got[key] == pytest.approx(value, rel=1e-6), key
 
 
+@pytest.mark.heavy
 def test_grid_casts_converge_to_the_beams(ctx):
     """The grid cast (an independent method: rays traced on the device, faces' regions
     counted by cells) against the beams, per term over 20 orientations: its error falls as
@@ -238,6 +239,7 @@ def over_the_sun(theta, profile, radius=0.2665):
     return sum(wi * np.interp(theta + xi, theta, profile) for xi, wi in zip(x, w / w.sum()))
 
 
+@pytest.mark.heavy
 def test_halo_noise_averages_over_the_wavelengths_runs(ctx):
     """The `halo` scene's noise as a property (issue: ≤ 1% beyond the halo's edge).  A
     sky's K wavelengths take K successive runs of one quasi-random sequence, so a colour

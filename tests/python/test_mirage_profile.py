@@ -2,12 +2,11 @@
 the same rays without the inversions (``arcus render SCENE --profile``).  What the fan
 must show: where the air is layered the fan folds (one height at the object seen at
 several rows: the multiple images), where it is not it does not; the rows' elevations
-are the pinhole camera's; bad input is refused before anything is rendered."""
+are the pinhole camera's.  The command's side (`arcus render SCENE --profile`, bad input
+refused before anything is rendered) is in test_cli.py."""
 
 import json
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -54,23 +53,6 @@ def test_rows_are_the_pinhole_cameras(ctx, repo):
     # the camera looks 0.06° up: a tilt changes the span by ~1e-7°
     assert fan["elevation_deg"][0] - fan["elevation_deg"][-1] == pytest.approx(span, abs=1e-5)
     assert np.all(np.diff(fan["elevation_deg"]) < 0)
-
-
-def test_command_writes_the_fan_and_refuses_what_has_none(repo, tmp_path):
-    def arcus_render(*args):
-        return subprocess.run([sys.executable, "-m", "arcus.cli", "render", *args], capture_output=True, text=True)
-    csv = tmp_path / "rays.csv"
-    run = arcus_render("inferior_mirage", "--quick", "-o", str(tmp_path / "m.png"), "--profile", str(csv),
-                       "--profile", str(tmp_path / "rays.png"))
-    assert run.returncode == 0, run.stderr
-    rows = np.genfromtxt(csv, delimiter=",", names=True)
-    assert set(np.unique(rows["inversions"])) == {0.0, 1.0} and (tmp_path / "rays.png").stat().st_size > 1000
-    for args, match in ((["cross_room", "--profile", str(tmp_path / "x.png")], "not an atmosphere"),
-                        (["ocean/atlantic", "--profile", str(tmp_path / "x.png")], "does not apply to ocean"),
-                        (["inferior_mirage", "--profile", str(tmp_path / "x.tiff")], "unknown format")):
-        run = arcus_render(*args, "--quick", "-o", str(tmp_path / "y.png"))
-        assert run.returncode == 2 and match in run.stderr, run.stderr
-        assert not (tmp_path / "y.png").exists()
 
 
 def test_a_field_that_is_not_air_is_refused(repo):

@@ -31,6 +31,7 @@ WAVELENGTHS = np.array([400.0, 450.0, 550.0, 700.0])
 RAYLEIGH_A = 0.94
 
 
+@pytest.mark.heavy
 @pytest.mark.parametrize("albedo", [0.0, 0.3, 0.8])
 @pytest.mark.parametrize("sun_zenith", [0.0, 30.0, 60.0, 75.0])
 def test_diffuse_light_at_the_ground_is_the_discrete_ordinates(albedo, sun_zenith):
