@@ -153,7 +153,9 @@ ARCUS_DECLARE_OCEAN_DESC(arcus_ocean_desc, arcus_ocean_phases, double, int32_t, 
  * l, `light_tables` holds g_samples distances' rows of n reals, E[l][d][m] = I_l(λ_m)
  * exp(−σ_t(λ_m) d) (the intensity that reaches distance d, elastic), then (inelastic)
  * as many rows of G[l][d][m] = Σ_i I_l(λ_i) exp(−σ_t(λ_i) d) μ_j(λ_i) h_j(λ_m | λ_i)
- * (λ_i/λ_m) Δλ / (4π) (eq. 4.5), d = g·g_step.                                    */
+ * (λ_i/λ_m) Δλ / (4π) (eq. 4.5), d = g·g_step.  For the sun (a directional light above
+ * the surface; its direction in `lights` is the refracted beam's in the water) I is
+ * its irradiance normal to the beam just below the surface and d the slant path. */
 #define ARCUS_DECLARE_OCEAN_RENDER_DESC(NAME, PHASES, R, I)                                       \
   typedef struct NAME {                                                                           \
     R eye[3], forward[3], right[3], up[3]; /* right/up scaled to the image plane at 1 */           \
@@ -164,6 +166,7 @@ ARCUS_DECLARE_OCEAN_DESC(arcus_ocean_desc, arcus_ocean_phases, double, int32_t, 
     I width, height, count, steps, k, light_count, g_samples;                                     \
     I first_pixel, end_pixel;  /* this launch's pixels                                       */   \
     I single;                  /* 1: single scattering from the lights                       */   \
+    I surface;                 /* 1: the flat sea surface at z = 0 ends every ray reaching it */   \
   } NAME
 
 /* A stored photon in the map's power channels: power, grid sample, event. */

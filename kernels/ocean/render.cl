@@ -101,14 +101,25 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
   for (int s = 0; s < rd.steps; ++s) {
     const REAL t = ((REAL)s + RC(0.5)) * rd.step;
     const REAL3 x = eye + t * dir;
+    if (rd.surface && x.z > RC(0)) break; /* through the surface: no water beyond */
     /* ---- single scattering from the lights (eq. 4.5 and its elastic part) */
     if (rd.single) {
       for (int l = 0; l < rd.light_count; ++l) {
         __global const REAL* L = lights + (size_t)l * ARCUS_OCEAN_LIGHT_REALS;
-        const REAL3 to_x = x - (REAL3)(L[1], L[2], L[3]);
-        const REAL dist = length(to_x);
-        if (!(dist > RC(0))) continue;
-        const REAL3 wi = to_x / dist; /* the light's propagation at x */
+        const int sun = (int)L[0] == ARCUS_OCEAN_EMIT_DIRECTIONAL;
+        REAL3 wi; /* the light's propagation at x */
+        REAL dist, spread;
+        if (sun) { /* the refracted beam, after its slant path from the surface */
+          wi = (REAL3)(L[4], L[5], L[6]);
+          dist = x.z / wi.z;
+          spread = RC(1);
+        } else {
+          const REAL3 to_x = x - (REAL3)(L[1], L[2], L[3]);
+          dist = length(to_x);
+          if (!(dist > RC(0))) continue;
+          wi = to_x / dist;
+          spread = RC(1) / (dist * dist);
+        }
         if ((int)L[0] == ARCUS_OCEAN_EMIT_SPOT && dot(wi, (REAL3)(L[4], L[5], L[6])) < L[7]) continue;
         const REAL mu = -dot(wi, dir); /* toward the camera: −dir */
         const REAL pw = ocean_phase_value(phases, optics, 0, mu), pd = ocean_phase_value(phases, optics, 1, mu),
@@ -118,7 +129,7 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
         const int g0 = min((int)gx, rd.g_samples - 2);
         const REAL gt = gx - (REAL)g0;
         __global const REAL* E = light_tables + ((size_t)l * (size_t)rd.g_samples * 2 + (size_t)g0) * (size_t)n;
-        const REAL w = rd.step / (dist * dist);
+        const REAL w = rd.step * spread;
         for (int m = 0; m < n; ++m) {
           const REAL e = E[m] + gt * (E[n + m] - E[m]);
           REAL in = (sigma_s[m] * pw + sigma_s[n + m] * pd + sigma_s[2 * n + m] * pp) * e;
@@ -157,7 +168,8 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
 
 #ifdef ARCUS_USE_OCEAN_BEAM
   /* ---- multiple scattering: the beam estimate, one traversal of the photon spheres */
-  const REAL length_max = rd.step * (REAL)rd.steps;
+  REAL length_max = rd.step * (REAL)rd.steps;
+  if (rd.surface && dir.z > RC(0)) length_max = fmin(length_max, -eye.z / dir.z);
   const REAL3 inv = (REAL3)(RC(1) / dir.x, RC(1) / dir.y, RC(1) / dir.z);
   int stack[ARCUS_BVH_MAX_DEPTH];
   int top = 0, node = 0;

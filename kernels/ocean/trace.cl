@@ -12,7 +12,8 @@
  * traces the photons i ≡ r (mod rows) in order and adds into its own tally row, so a
  * result depends neither on the launch's size nor on the device's lane layout.
  * Random numbers: Philox (common/philox.h), photon i's leg L (a flight and what ends
- * it) reads blocks 4 + 4L … 7 + 4L; emission reads blocks 0 and 1.
+ * it) reads blocks 4 + 4L … 7 + 4L; emission reads blocks 0, 1 and (a point of a lit
+ * disc on the surface) 2.
  *
  * Features: ARCUS_USE_OCEAN_INELASTIC (the inelastic events), ARCUS_USE_OCEAN_BOUNDARIES
  * (surface, bottom, box), ARCUS_USE_OCEAN_DEPTHS (irradiance tallies at depths).   */
@@ -272,6 +273,13 @@ __kernel void arcus_ocean_trace(ARCUS_PARAMS(ARCUS_OCEAN_TRACE_ARGS)) {
         dir = axis;
       if (d.surface) {
         p.z = RC(0);
+        if (L[8] > RC(0)) { /* a point of the lit disc on the surface: radius R√u, uniform in area */
+          REAL b0, b1; /* block 2: the sky's direction took a0, a1 */
+          ocean_draw2(d.seed, i, 2, &b0, &b1);
+          const REAL rr = L[8] * sqrt(b0), phi = RC(2) * OCEAN_PI * b1;
+          p.x += rr * cos(phi);
+          p.y += rr * sin(phi);
+        }
         const REAL T = ocean_enter_water(dp, &dir);
         t[ARCUS_OCEAN_T_ESCAPED(d.bins)] += power * (RC(1) - T); /* reflected by the surface */
         power *= T;

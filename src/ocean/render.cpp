@@ -17,6 +17,10 @@
 #include "spectral/cie.h"
 #include "spectral/srgb.h"
 
+// Fresnel at the surface for the sun's beam: the scalar code the kernels share.
+#include "common/real.h"
+#include "common/fresnel.h"
+
 namespace arcus::ocean {
 namespace {
 
@@ -45,9 +49,33 @@ std::string number(double x) {
   return b;
 }
 
-// A light's radiant intensity at nm [W/sr/nm]: point lights spread their flux over
-// 4π, spots over their cone's solid angle.
-double intensity(const Light& L, double nm) {
+// The sun's beam below the flat surface: its direction in the water (Snell: the
+// tangential part shrinks by 1/n) and what of its plane irradiance crosses the surface
+// per unit area normal to that direction, T/μ_w (μ_w: the beam's cosine to the
+// vertical in the water).
+struct Refracted {
+  double direction[3];
+  double per_normal_area;
+};
+
+Refracted refracted_sun(const Light& L, double n_water) {
+  const double l = std::hypot(L.direction[0], L.direction[1], L.direction[2]);
+  const double k[3] = {L.direction[0] / l, L.direction[1] / l, L.direction[2] / l};
+  Refracted r;
+  r.direction[0] = k[0] / n_water;
+  r.direction[1] = k[1] / n_water;
+  const double mu_w = std::sqrt(std::max(0.0, 1 - r.direction[0] * r.direction[0] - r.direction[1] * r.direction[1]));
+  r.direction[2] = -mu_w;
+  r.per_normal_area = (1 - arcus_fresnel_reflectance(-k[2], 1.0, n_water)) / mu_w;
+  return r;
+}
+
+// What a light sends toward the water at nm, per unit of the light tables' distance
+// law: a point light's radiant intensity [W/sr/nm] (spots over their cone's solid
+// angle), the sun's irradiance normal to its beam just below the surface [W/m²/nm]
+// (its spectrum is the plane irradiance on the surface).
+double intensity(const Light& L, const Medium& medium, double nm) {
+  if (L.kind == Light::directional) return light_spectrum(L, nm) * refracted_sun(L, medium.n_water).per_normal_area;
   const double solid_angle =
       L.kind == Light::spot ? 2 * kPi * (1 - std::cos(L.half_angle_deg * kPi / 180)) : 4 * kPi;
   return light_spectrum(L, nm) / solid_angle;
@@ -84,10 +112,11 @@ bool inelastic(const WaterTables& w) {
 }
 
 // The kernel's light tables (kernels/ocean/ocean_desc.h): per light, kLightRows rows
-// of the intensity reaching distance d per sample, then as many of the inelastic
-// in-scattering G of eq. 4.5 (its redistribution folded in once, here).
-std::vector<double> light_tables(const WaterTables& w, const std::vector<Light>& lights, const std::vector<double>& st,
-                                 double band, double g_step) {
+// of the intensity reaching distance d per sample (the sun's: its beam's irradiance
+// after a slant path d below the surface), then as many of the inelastic in-scattering
+// G of eq. 4.5 (its redistribution folded in once, here).
+std::vector<double> light_tables(const WaterTables& w, const std::vector<Light>& lights, const Medium& medium,
+                                 const std::vector<double>& st, double band, double g_step) {
   const size_t n = w.grid.count;
   // M[m][i]: radiance per metre and per unit intensity at λ_m from excitation λ_i
   // (photons re-emitted at rate μ_j(λ_i), density h_j(λ_m | λ_i) per nm, energy
@@ -110,7 +139,8 @@ std::vector<double> light_tables(const WaterTables& w, const std::vector<Light>&
   for (size_t l = 0; l < lights.size(); ++l)
     for (int g = 0; g < kLightRows; ++g) {
       const double d = g * g_step;
-      for (size_t m = 0; m < n; ++m) reach[m] = intensity(lights[l], w.grid.nm(int(m))) * std::exp(-st[m] * d);
+      for (size_t m = 0; m < n; ++m)
+        reach[m] = intensity(lights[l], medium, w.grid.nm(int(m))) * std::exp(-st[m] * d);
       double* E = &out[((l * 2 * kLightRows) + g) * n];
       std::copy(reach.begin(), reach.end(), E);
       if (!any_inelastic) continue;
@@ -166,9 +196,14 @@ std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const WaterTables& w, co
   scene::check_camera(scene::camera_desc(camera), "camera");
   check_march(march);
   check_trace(lights, medium, trace_params);
-  for (size_t l = 0; l < lights.size(); ++l)
-    require(lights[l].kind == Light::point || lights[l].kind == Light::spot,
-            "lights[" + std::to_string(l) + "]: images are lit by point and spot lights (in the water)");
+  for (size_t l = 0; l < lights.size(); ++l) {
+    const Light::Kind kind = lights[l].kind;
+    require(kind == Light::point || kind == Light::spot || (kind == Light::directional && medium.surface),
+            "lights[" + std::to_string(l) + "]: images are lit by point and spot lights in the water and by the sun "
+            "above the surface (a sky's first scattering is not in images yet)");
+  }
+  if (medium.surface)
+    require(camera.position[2] < 0, "camera.position: must be in the water, below the surface (z < 0)");
   const Grid& grid = w.grid;
   const size_t n = grid.count;
   auto job = std::make_unique<RenderJob>(ctx);
@@ -216,16 +251,24 @@ std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const WaterTables& w, co
   append_phases(w, &optics, &d.phases);
   double d_max = 0;
   for (const Light& L : lights)
-    d_max = std::max(d_max, std::hypot(L.position[0] - camera.position[0], L.position[1] - camera.position[1],
-                                       L.position[2] - camera.position[2]) +
-                                march.distance);
+    if (L.kind == Light::directional)  // the slant path down to the deepest march point
+      d_max = std::max(d_max, (-camera.position[2] + march.distance) /
+                                  -refracted_sun(L, medium.n_water).direction[2]);
+    else
+      d_max = std::max(d_max, std::hypot(L.position[0] - camera.position[0], L.position[1] - camera.position[1],
+                                         L.position[2] - camera.position[2]) +
+                                  march.distance);
   const double g_step = d_max / (kLightRows - 1);
-  const std::vector<double> tables = light_tables(w, lights, st, band, g_step);
+  const std::vector<double> tables = light_tables(w, lights, medium, st, band, g_step);
   std::vector<double> light_buf;
   for (const Light& L : lights) {
     double axis[3] = {L.direction[0], L.direction[1], L.direction[2]};
     const double norm = std::hypot(axis[0], axis[1], axis[2]);
     for (double& a : axis) a = norm > 0 ? a / norm : 0;
+    if (L.kind == Light::directional) {  // the kernel takes the beam as it runs in the water
+      const Refracted r = refracted_sun(L, medium.n_water);
+      std::copy(r.direction, r.direction + 3, axis);
+    }
     const double rec[ARCUS_OCEAN_LIGHT_REALS] = {double(L.kind), L.position[0], L.position[1], L.position[2], axis[0],
                                                  axis[1], axis[2], std::cos(L.half_angle_deg * kPi / 180), 0, 0};
     light_buf.insert(light_buf.end(), rec, rec + ARCUS_OCEAN_LIGHT_REALS);
@@ -262,6 +305,7 @@ std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const WaterTables& w, co
   d.light_count = static_cast<int32_t>(lights.size());
   d.g_samples = kLightRows;
   d.single = march.single_scattering;
+  d.surface = medium.surface;
 
   const Layout layout{1, 1};  // scalar: a pixel per work-item (render.cl)
   const BuiltProgram built = ctx->runtime->program(render_source(), render_features(w, march), layout);

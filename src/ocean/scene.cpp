@@ -191,8 +191,9 @@ Light parse_light(const Node& n, bool* daylight) {
     case Type::sun: {
       // Sunlight from that zenith and azimuth: a directional light pointing down, as
       // arcus.ocean.Light.sun makes it.
-      n.expect_object({"type", "zenith_deg", "azimuth_deg", "spectrum"});
+      n.expect_object({"type", "zenith_deg", "azimuth_deg", "radius", "spectrum"});
       L.kind = Light::directional;
+      if (auto v = n.find("radius")) L.radius = v->number();  // a lit disc of the surface
       const Node zn = n.member("zenith_deg");
       const double z = zn.number() * kPi / 180;
       if (!(z >= 0 && z < kPi / 2)) zn.fail("expected a zenith angle in [0, 90) degrees");
@@ -211,8 +212,9 @@ Light parse_light(const Node& n, bool* daylight) {
       if (auto v = n.find("radius")) L.radius = v->number();
       break;
     case Type::sky:
-      n.expect_object({"type", "spectrum"});
+      n.expect_object({"type", "radius", "spectrum"});
       L.kind = Light::sky;
+      if (auto v = n.find("radius")) L.radius = v->number();
       break;
   }
   L.spectrum = parse_light_spectrum(n.member("spectrum"), type == Type::sun || type == Type::sky, daylight);

@@ -56,6 +56,78 @@ def test_single_scattering_matches_the_closed_form(tmp_path, ctx):
             assert r.spectral[py, px, 0] == pytest.approx(expect, rel=1e-4), (px, py)
 
 
+def camera_rays(position, look_at, up, vfov, width, height):
+    """The pinhole camera's pixel rays (unit, (H, W, 3)), built here as render.cpp
+    describes it: right = forward × up, up' = right × forward, the image plane at 1."""
+    f = np.subtract(look_at, position, dtype=float)
+    f /= np.linalg.norm(f)
+    r = np.cross(f, up)
+    r /= np.linalg.norm(r)
+    u = np.cross(r, f)
+    half_h = math.tan(math.radians(vfov) / 2)
+    half_w = half_h * width / height
+    sx = (2 * (np.arange(width) + 0.5) / width - 1) * half_w
+    sy = (1 - 2 * (np.arange(height) + 0.5) / height) * half_h
+    d = f + sx[None, :, None] * r + sy[:, None, None] * u
+    return d / np.linalg.norm(d, axis=2, keepdims=True)
+
+
+def test_the_suns_single_scattering_below_the_surface_matches_the_closed_form(tmp_path, ctx):
+    """The sun 30° from the zenith over a flat sea (n = 1.34), plane irradiance 1 W/m²/nm
+    on the surface, isotropic water, one wavelength; a camera 5 m down looking 45° up, so
+    that its rays reach the surface.  Below the surface the sun is a beam along the
+    refracted direction (Snell) carrying T/μ_w per unit area normal to it (T: Fresnel's
+    unpolarised transmittance, written here; μ_w: the beam's cosine in the water); at
+    depth |z| it has come a slant path |z|/μ_w.  So a pixel's radiance is ∫ e^(−ct)
+    b/(4π) (T/μ_w) e^(−c|z(t)|/μ_w) dt from the eye to the surface or 12 m, which numpy
+    integrates here (Simpson, 20 001 points).  The march (2000 steps) ends at its last
+    midpoint below the surface: up to half a step (3 mm) of a path of 7 m or more, where
+    the light is brightest, so 2e-3 (measured: within 3.4e-4)."""
+    a, b, n_water, zenith = 0.05, 0.2, 1.34, 30.0
+    eye, look_at = np.array([0.0, 0.0, -5.0]), np.array([1.0, 0.0, -4.0])
+    doc = {"name": "sun_single", "water": {"iops": {"absorption": a, "scattering": b, "phase": {"kind": "isotropic"}}},
+           "grid": {"first_nm": 550, "last_nm": 550, "step_nm": 1},
+           "lights": [{"type": "sun", "zenith_deg": zenith, "azimuth_deg": 0, "spectrum": 1.0}],
+           "medium": {"surface": True, "n_water": n_water},
+           "view": view(width=3, height=3, steps=2000, distance=12.0, multiple=False, position=eye.tolist(),
+                        look_at=look_at.tolist())}
+    r = ocean.render(write_scene(tmp_path, doc), context=ctx)
+    c = a + b
+    cos_i = math.cos(math.radians(zenith))
+    sin_t = math.sin(math.radians(zenith)) / n_water
+    mu_w = math.sqrt(1 - sin_t ** 2)
+    rs = ((cos_i - n_water * mu_w) / (cos_i + n_water * mu_w)) ** 2
+    rp = ((n_water * cos_i - mu_w) / (n_water * cos_i + mu_w)) ** 2
+    beam = (1 - (rs + rp) / 2) / mu_w
+    rays = camera_rays(eye, look_at, [0, 0, 1], 30, 3, 3)
+    for py in range(3):
+        for px in range(3):
+            d = rays[py, px]
+            end = min(12.0, -eye[2] / d[2]) if d[2] > 0 else 12.0
+            t = np.linspace(0, end, 20001)
+            depth = -(eye[2] + t * d[2])
+            f = np.exp(-c * t) * b / (4 * math.pi) * beam * np.exp(-c * depth / mu_w)
+            h = t[1] - t[0]
+            expect = h / 3 * (f[0] + f[-1] + 4 * f[1:-1:2].sum() + 2 * f[2:-1:2].sum())
+            assert r.spectral[py, px, 0] == pytest.approx(expect, rel=2e-3), (px, py)
+
+
+def test_the_sun_lights_a_disc_of_the_surface(ctx):
+    """A sun with a radius sends its photons through that disc of the surface, so that
+    an image's photons surround its camera: the emitted power is the plane irradiance
+    times the disc's area (π·3² m² here; to rounding) and the band, and in turbid water
+    (mean free path 0.2 m) the stored photons lie under the disc: their median distance
+    from its axis within 10 % of a uniform disc's R/√2, none beyond R + 2 m."""
+    water = ocean.Water.from_iops(0.05, 5.0, phase="isotropic")
+    sun = ocean.Light.directional((0.0, 0.0, -1.0), 2.0, radius=3.0)
+    r = ocean.trace_photons(water, sun, 20000, 5, 3, grid=(500.0, 500.0, 1.0), store=True, surface=True,
+                            context=ctx)
+    assert r.tallies["emitted"] == pytest.approx(2.0 * math.pi * 9.0, rel=1e-12)
+    radius = np.hypot(r.photons["positions"][:, 0], r.photons["positions"][:, 1])
+    assert radius.size > 1000
+    assert np.median(radius) == pytest.approx(3.0 / math.sqrt(2), rel=0.1) and radius.max() < 5.0
+
+
 @pytest.mark.heavy
 def test_the_two_estimates_see_the_same_multiple_scattering(tmp_path, ctx):
     """The per-step k-nearest estimate and the beam estimate gather the same photons'
@@ -131,6 +203,17 @@ def test_bad_views_are_refused(tmp_path, ctx):
     doc = dict(base, view=view(look_at=(0, 0, -10)))
     with pytest.raises(arcus.ArgumentError, match="look_at"):
         ocean.render(write_scene(tmp_path, doc), context=ctx)
+    # images take the sun over the surface, not yet a sky's light, and see from the water
+    sunlit = dict(base, medium={"surface": True, "n_water": 1.34}, view=view(),
+                  lights=[{"type": "sun", "zenith_deg": 30, "spectrum": 1.0}, {"type": "sky", "spectrum": 0.2}])
+    with pytest.raises(arcus.ArgumentError, match=r"lights\[1\].*sky's first scattering"):
+        ocean.render(write_scene(tmp_path, sunlit), context=ctx)
+    sunlit = dict(sunlit, lights=sunlit["lights"][:1], view=view(position=(0, 0, 1), look_at=(1, 0, 1)))
+    with pytest.raises(arcus.ArgumentError, match="camera.position.*below the surface"):
+        ocean.render(write_scene(tmp_path, sunlit), context=ctx)
+    beam = dict(base, view=view(), lights=[{"type": "directional", "direction": [0, 0, -1], "spectrum": 1.0}])
+    with pytest.raises(arcus.ArgumentError, match=r"lights\[0\]: images are lit by"):
+        ocean.render(write_scene(tmp_path, beam), context=ctx)
 
 
 @pytest.mark.heavy
