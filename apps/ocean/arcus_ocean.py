@@ -11,8 +11,10 @@ trace:   traces the scene's photons and writes DIR/tallies.json (where the energ
          (energy absorbed per interaction, thesis Fig. 5.9) and DIR/fig5_12.png (energy
          per event and constituent, thesis Fig. 5.12).
 profile: irradiance profiles of a scene with a "profile": DIR/profile.csv (depth,
-         wavelength, Ed, Eu, E0) and DIR/profile.png (Ed, Eu, E0 against depth at a few
-         wavelengths; the K_d spectrum).
+         wavelength, Ed, Eu, E0 and, for a column lit by the sun and a sky, the same
+         by discrete ordinates with elastic scattering only: arcus.ocean_reference) and
+         DIR/profile.png (Ed, Eu, E0 against depth at a few wavelengths, the photons'
+         as points over the reference's lines; the K_d spectrum).
 render:  renders the scene's "view" (arcus.ocean.render).
 
 DIR defaults to out/ocean/<scene name>.  The library reads and checks the scene first
@@ -35,6 +37,7 @@ import numpy as np  # noqa: E402
 
 import arcus  # noqa: E402  (needs the sys.path entry above)
 import arcus.ocean as ocean  # noqa: E402
+import arcus.ocean_reference as ocean_reference  # noqa: E402
 from arcus.progress import Progress  # noqa: E402
 
 EXIT_ERROR = 2
@@ -245,36 +248,69 @@ def cmd_trace(ctx, doc, args):
 # ---- profile --------------------------------------------------------------------------
 
 
-def plot_profile(r, name, path):
-    """Ed, Eu, E0 against depth at a few wavelengths (log scale), and K_d's spectrum
-    between successive depths."""
+def elastic_reference(ctx, doc, photons):
+    """The scene's column by discrete ordinates (arcus.ocean_reference), or None where
+    it is not plane-parallel (a box, a point or spot light, a lit disc)."""
+    water, lights, kw = trace_args(doc, photons)
+    if "box" in kw:
+        return None
+    keys = ("grid", "surface", "n_water", "bottom_depth", "bottom_albedo", "layer")
+    try:
+        return ocean_reference.elastic_profile(water, lights, kw["depths"], context=ctx,
+                                               **{k: kw[k] for k in keys})
+    except ValueError:
+        return None
+
+
+def plot_profile(r, ref, name, path):
+    """Ed, Eu, E0 against depth at a few wavelengths (log scale): the photons' as points,
+    the elastic reference's as lines; and K_d's spectrum between successive depths."""
     plt = pyplot()
     wl, depths = r.wavelengths, r.depths
     picks = sorted({int(np.argmin(np.abs(wl - nm))) for nm in (412, 443, 490, 550, 620, 680)})
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 5))
     cmap = plt.get_cmap("viridis")
+    quantities = (("Ed", "-", "o"), ("Eu", ":", "v"), ("E0", "--", "s"))
     for i, k in enumerate(picks):
         c = cmap(i / max(1, len(picks) - 1))
-        for e, style, label in ((r.Ed, "-", "Ed"), (r.Eu, ":", "Eu"), (r.E0, "--", "E0")):
-            v = np.where(e[:, k] > 0, e[:, k], np.nan)
-            ax.plot(v, depths, style, color=c, marker=".", label="%s %g nm" % (label, wl[k]))
+        for q, style, marker in quantities:
+            e = getattr(r, q)[:, k]
+            ax.plot(np.where(e > 0, e, np.nan), depths, marker, color=c, ms=4, mfc="none" if q != "Ed" else c)
+            if ref is not None:
+                ax.plot(ref[q][:, k], depths, style, color=c, lw=1)
+    # the legend: a colour per wavelength, a marker (photons) and a line (reference) per quantity
+    handles = [plt.Line2D([], [], color=cmap(i / max(1, len(picks) - 1)), lw=3, label="%g nm" % wl[k])
+               for i, k in enumerate(picks)]
+    handles += [plt.Line2D([], [], color="k", marker=m, ls=style if ref is not None else "none", lw=1, ms=4,
+                           mfc="none" if q != "Ed" else "k", label=q) for q, style, m in quantities]
+    positive = np.concatenate([getattr(r, q)[getattr(r, q) > 0] for q, _, _ in quantities])
+    if positive.size:  # the reference goes on where the photons run out: a decade further
+        ax.set_xlim(positive.min() / 10, positive.max() * 2)
     ax.set_xscale("log")
     ax.invert_yaxis()
     ax.set_xlabel("irradiance [W/m²/nm]")
     ax.set_ylabel("depth [m]")
-    ax.legend(fontsize=6, ncol=3)
+    ax.legend(handles=handles, fontsize=7, ncol=3)
     ax.grid(alpha=0.3, which="both")
-    ax.set_title("%s: Ed (solid), Eu (dotted), E0 (dashed)" % name, fontsize=10)
+    title = "%s: Ed, Eu, E0 by photons (markers)" % name
+    if ref is not None:
+        title += ";\nlines: discrete ordinates, elastic only (Raman and fluorescence as losses)"
+    ax.set_title(title, fontsize=9)
     kd = ocean.diffuse_attenuation(depths, r.Ed)
+    kd_ref = None if ref is None else ocean.diffuse_attenuation(depths, ref["Ed"])
     for j in range(kd.shape[0]):
-        bx.plot(wl, kd[j], color=cmap(j / max(1, kd.shape[0] - 1)), label="%g–%g m" % (depths[j], depths[j + 1]))
+        c = cmap(j / max(1, kd.shape[0] - 1))
+        bx.plot(wl, kd[j], ".", color=c, ms=3, label="%g–%g m" % (depths[j], depths[j + 1]))
+        if kd_ref is not None:
+            bx.plot(wl, kd_ref[j], "-", color=c, lw=1)
     bx.set_xlabel("wavelength [nm]")
     bx.set_ylabel("K_d [1/m]")
     bx.set_yscale("log")
     bx.grid(alpha=0.3, which="both")
     if kd.shape[0]:
         bx.legend(fontsize=7)
-    bx.set_title("diffuse attenuation of Ed", fontsize=10)
+    bx.set_title("diffuse attenuation of Ed: photons (points), discrete ordinates (lines)"
+                 if ref is not None else "diffuse attenuation of Ed", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
@@ -286,17 +322,22 @@ def cmd_profile(ctx, doc, args):
     # arcus.ocean.profile has no progress callback: trace_photons with the scene's own
     # lights and column gives the same profile and the bar.
     r = traced(ctx, doc, args, "profile")
+    ref = elastic_reference(ctx, doc, args.photons)
     d = out_dir(args, doc)
     with open(d / "profile.csv", "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["depth_m", "wavelength_nm", "Ed", "Eu", "E0"])
+        w.writerow(["depth_m", "wavelength_nm", "Ed", "Eu", "E0"]
+                   + ([] if ref is None else ["Ed_elastic_do", "Eu_elastic_do", "E0_elastic_do"]))
         for j, z in enumerate(r.depths):
             for k, nm in enumerate(r.wavelengths):
-                w.writerow([repr(float(z)), repr(float(nm)), repr(float(r.Ed[j, k])), repr(float(r.Eu[j, k])),
-                            repr(float(r.E0[j, k]))])
-    plot_profile(r, doc["name"], d / "profile.png")
-    print("%s: %d photons, %d depths x %d wavelengths; wrote %s/{profile.csv,profile.png}"
-          % (doc["name"], r.tallies["photons"], r.depths.size, r.wavelengths.size, d))
+                row = [float(z), float(nm), r.Ed[j, k], r.Eu[j, k], r.E0[j, k]]
+                if ref is not None:
+                    row += [ref["Ed"][j, k], ref["Eu"][j, k], ref["E0"][j, k]]
+                w.writerow([repr(float(v)) for v in row])
+    plot_profile(r, ref, doc["name"], d / "profile.png")
+    print("%s: %d photons, %d depths x %d wavelengths%s; wrote %s/{profile.csv,profile.png}"
+          % (doc["name"], r.tallies["photons"], r.depths.size, r.wavelengths.size,
+             "" if ref is None else ", beside discrete ordinates", d))
 
 
 # ---- render ---------------------------------------------------------------------------

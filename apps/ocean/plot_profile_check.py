@@ -29,11 +29,11 @@ import numpy as np
 
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "bindings" / "python"))
-sys.path.insert(0, str(REPO / "tests" / "python"))
 
 import arcus  # noqa: E402
 import arcus.ocean as ocean  # noqa: E402
-import ocean_reference as ref  # noqa: E402
+import arcus.discrete_ordinates as ref  # noqa: E402
+import arcus.ocean_reference as ocean_reference  # noqa: E402
 
 A, B = 0.05, 0.25
 G_F, G_B, ZETA = 0.924, -0.20, 0.983
@@ -44,15 +44,10 @@ GRID = (550.0, 550.0, 1.0)
 
 def reference(depths, layer, streams=32):
     """E_d, E_u at the planes and E_0 averaged over [z - layer/2, z + layer/2] ∩ water."""
-    phase = ref.two_term_hg(ZETA, G_F, G_B)
-    kw = dict(fresnel=True, sun_zenith_deg=SUN, n_water=N_WATER, streams=streams)
-    out = ref.solve_profile(A, B, phase, depths, **kw)
-    x, w = np.polynomial.legendre.leggauss(12)
-    lo = np.maximum(depths - 0.5 * layer, 0.0)
-    hi = depths + 0.5 * layer
-    nodes = (lo[:, None] + 0.5 * (hi - lo)[:, None] * (x[None, :] + 1.0)).ravel()
-    e0 = ref.solve_profile(A, B, phase, nodes, **kw)["E0"].reshape(depths.size, x.size) @ w * 0.5
-    return dict(Ed=out["Ed"], Eu=out["Eu"], E0=e0)
+    water = ocean.Water.from_iops(A, B, phase=("two_term_hg", G_F, G_B, ZETA))
+    r = ocean_reference.elastic_profile(water, [ocean.Light.sun(SUN, 1.0)], depths, grid=GRID, n_water=N_WATER,
+                                        layer=layer, streams=streams)
+    return {q: r[q][:, 0] for q in ("Ed", "Eu", "E0")}
 
 
 def main(argv=None):
@@ -116,7 +111,7 @@ def main(argv=None):
              f"a = {A} /m, b = {B} /m, phase {ZETA} HG({G_F}) + {1 - ZETA:.3f} HG({G_B}); semi-infinite; 550 nm.",
              f"Monte Carlo: {args.batches} batches × {args.photons:,} photons (seeds {args.seed}..{args.seed + args.batches - 1}), "
              f"{seconds:.1f} s; past the interaction limit: {past:.1e} of the energy.",
-             f"Reference: ocean_reference.solve_profile, 32 streams (|32 − 64 streams| ≤ "
+             f"Reference: arcus.ocean_reference (discrete ordinates), 32 streams (|32 − 64 streams| ≤ "
              f"{max(np.max(np.abs(r32[q] - r64[q]) / r32[q]) for q in r32):.1e} relative); "
              f"E_0 averaged over the same {args.layer:g} m layer as the tally.",
              "rel. = MC / ref − 1; (n SE) = the difference in Monte Carlo standard errors.",

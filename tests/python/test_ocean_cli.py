@@ -61,7 +61,8 @@ def test_profile_writes_csv_and_plot(tmp_path):
     assert (out / "profile.png").stat().st_size > 0
     with open(out / "profile.csv", newline="") as f:
         rows = list(csv.DictReader(f))
-    assert list(rows[0]) == ["depth_m", "wavelength_nm", "Ed", "Eu", "E0"]
+    assert list(rows[0]) == ["depth_m", "wavelength_nm", "Ed", "Eu", "E0", "Ed_elastic_do", "Eu_elastic_do",
+                             "E0_elastic_do"]  # a sunlit column: the discrete-ordinates reference beside
     assert len(rows) == 3 * 16  # depths × wavelengths (400–700 nm at 20)
     surface = [float(row["Ed"]) for row in rows if float(row["depth_m"]) == 0]
     assert min(surface) > 0

@@ -1,4 +1,4 @@
-"""Self-checks of tests/python/ocean_reference.py, the discrete-ordinates reference for
+"""Self-checks of arcus.discrete_ordinates, the discrete-ordinates reference for
 the ocean engine's irradiance profiles.
 
 Each check compares the solver with something it does not share machinery with:
@@ -20,7 +20,7 @@ import time
 import numpy as np
 import pytest
 
-import ocean_reference as ref
+import arcus.discrete_ordinates as ref
 
 integrate = pytest.importorskip("scipy.integrate")
 optimize = pytest.importorskip("scipy.optimize")

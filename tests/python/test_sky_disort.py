@@ -3,7 +3,7 @@ DISORT-style check).  A pure Rayleigh atmosphere (no ozone, no aerosol) over a
 Lambertian ground is, for fluxes in plane-parallel geometry, one homogeneous
 conservative layer of the column's optical depth τ: with one phase function and single-
 scattering albedo everywhere, the radiative transfer equation in optical depth does not
-see how the air's density falls with height.  tests/python/ocean_reference.py solves
+see how the air's density falls with height.  arcus.discrete_ordinates solves
 that layer by discrete ordinates (32 streams a hemisphere, no delta-M: Rayleigh needs
 none; written for the ocean engine, it does not import arcus), with the beam's direct
 plane irradiance 1 at the top; arcus's sky (Hillaire 2020's table of isotropic higher
@@ -13,16 +13,13 @@ sun's spectrum and the air mass's sphericity (Kasten–Young's 1.995 against 1/�
 60°: 0.1 % of τ/μ0)."""
 
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 import arcus.daylight as daylight
 
-sys.path.insert(0, str(Path(__file__).parent))
-import ocean_reference as reference  # noqa: E402
+import arcus.discrete_ordinates as reference
 
 WAVELENGTHS = np.array([400.0, 450.0, 550.0, 700.0])
 # Rayleigh's phase with the air's depolarisation (ρ_n ≈ 0.028, Bates' King factor at

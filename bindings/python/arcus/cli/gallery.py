@@ -101,9 +101,11 @@ def steps(full):
                       ["render", "ocean/" + w, "-o", "{out}/%s.png" % w, "--quiet"]
                       + ([] if full else ["--width", "256", "--height", "192", "--photons", "200000"]), "ocean",
                       docs_image="ocean/mediterranean.png" if w == "mediterranean" else ""))
-        # beside it the same water's vertical profile under the sun and a sky
+        # beside it the same water's vertical profile under the sun and a sky, and its reference
         s.append(Step("Underwater light", "%s water under the sun: depth profiles" % w.replace("_", " ").title(),
-                      description("ocean/profiles/%s_sun" % w),
+                      description("ocean/profiles/%s_sun" % w) + " Photons (markers) beside discrete ordinates "
+                      "with elastic scattering only (lines): where the photons rise above the lines is Raman "
+                      "and fluorescence light.",
                       ["ocean", "profile", "ocean/profiles/%s_sun" % w, "--out", "{out}", "--quiet"]
                       + ([] if full else ["--photons", "100000"]), "ocean/%s_profile" % w,
                       pictures=["profile.png"]))
@@ -119,7 +121,7 @@ def steps(full):
                   "ocean/fig5_12", pictures=["fig5_12.png"]))
     s.append(Step("Underwater light", "A sunlit profile against discrete ordinates",
                   "Thesis §4.2: downwelling, upwelling and scalar irradiance from the photon tracer against an "
-                  "independent plane-parallel discrete-ordinates solution (tests/python/ocean_reference.py).",
+                  "independent plane-parallel discrete-ordinates solution (arcus.discrete_ordinates).",
                   ["apps/ocean/plot_profile_check.py", "--out", "{out}"]
                   + ([] if full else ["--photons", "50000", "--batches", "4"]), "ocean/profile"))
     wl = ["--wavelengths", "380", "700", "33" if full else "9"]

@@ -2,8 +2,8 @@
 the ocean engine's Monte Carlo irradiance profiles are compared with.
 
 Pure numpy (scipy optional, used only for sparse solves of many-layer problems); it
-does not import arcus.  Run it (``python3 tests/python/ocean_reference.py``) for an
-example table.
+does not import the rest of arcus.  Run it (``python3 -m arcus.discrete_ordinates``)
+for an example table.
 
 Conventions
 -----------
