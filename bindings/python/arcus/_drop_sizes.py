@@ -1,5 +1,5 @@
-"""Drop sizes for arcus.sky: Gauss–Legendre bins over a size range, and the size
-distributions of cloud and fog droplets."""
+"""Drop sizes for arcus.sky: Gauss–Legendre bins over a size range, the size
+distributions of cloud and fog droplets, and their stratified nodes for Lorenz–Mie."""
 
 import math
 
@@ -11,6 +11,35 @@ from ._errors import ArgumentError
 def gauss_bins(lo, hi, count):
     x, w = np.polynomial.legendre.leggauss(count)
     return (lo + hi) / 2 + (hi - lo) / 2 * x, (hi - lo) / 2 * w
+
+
+#: The golden ratio's fractional part: successive wavelengths' strata offsets
+#: frac(1/2 + j φ) fill (0, 1) as evenly as any sequence can (Weyl, Kronecker).
+GOLDEN = (math.sqrt(5) - 1) / 2
+#: Points of the cross-section's cumulative distribution, inverted by interpolation.
+CDF_POINTS = 8193
+
+
+def stratified_nodes(log_density, lo, hi, count, wavelengths):
+    """Sizes for Lorenz–Mie that change with the wavelength: (radii, weights), each
+    (wavelengths, count).  Row j takes one radius in each of ``count`` strata of equal
+    cross-section (r² n(r): where the light is), at the offset frac(1/2 + j φ) within
+    its stratum.  Any fixed set of sizes leaves the ripple of each one size (Mie's
+    resonances, finer than any bins here) in every wavelength's table alike; moved from
+    one wavelength to the next, the sizes' ripples fall at other angles and average out
+    in the colour, for the same number of Mie calls (docs/benchmarks.md, "Fog bows").
+    Weights: number fractions ⟨r²⟩/(count r²), so that every row holds the
+    distribution's cross-section exactly and its number on average."""
+    r = np.linspace(lo, hi, CDF_POINTS)
+    log_n = log_density(r)
+    n = np.exp(log_n - log_n.max())
+    def integral(f):  # trapezoid along the grid, cumulative
+        return np.concatenate([[0.0], np.cumsum((f[1:] + f[:-1]) / 2 * np.diff(r))])
+    cdf = integral(r**2 * n)
+    mean_r2 = cdf[-1] / integral(n)[-1]
+    offsets = (0.5 + GOLDEN * np.arange(wavelengths)) % 1.0
+    radii = np.interp((np.arange(count)[None, :] + offsets[:, None]) / count, cdf / cdf[-1], r)
+    return radii, mean_r2 / (count * radii**2)
 
 
 def cloud_droplets(p, dist, where):

@@ -24,7 +24,7 @@ import numpy as np
 
 from . import _lib, _scene_file, daylight, sweep
 from ._args import to_path
-from ._drop_sizes import cloud_droplets, gauss_bins
+from ._drop_sizes import cloud_droplets, gauss_bins, stratified_nodes
 from ._errors import ArgumentError
 from .context import _check_progress, _owned_context
 from .image import read as read_image
@@ -136,9 +136,12 @@ def upright_rotation(sun_elevation_deg, sun_azimuth_deg=180.0):
     return frame @ np.array([px, py, pz]).T  # R[r, c] = light_r · particle_c
 
 
-def populations(rain, sun_elevation_deg):
+def populations(rain, sun_elevation_deg, wavelengths=1):
     """The rain's populations as (particle spec, number density [1/m³]) pairs: one size,
-    or a size distribution in Gauss–Legendre bins (``bins``).  Specs are those of
+    or a size distribution in Gauss–Legendre bins (``bins``).  Cloud and fog droplets by
+    Lorenz–Mie take, instead of fixed bins, ``bins`` sizes that move with the wavelength
+    (:func:`arcus._drop_sizes.stratified_nodes`): their specs' radius and their density
+    are then one per wavelength, of ``wavelengths``.  Specs are those of
     :func:`arcus.sweep.phase_tables`."""
     pops = rain.get("populations")
     if not isinstance(pops, list) or not pops:
@@ -182,6 +185,13 @@ def populations(rain, sun_elevation_deg):
                 log_density, (lo, hi) = cloud_droplets(p, dist, where)
                 lo, hi = p.get("radius_range", [lo, hi])
                 total = _number(p, "total_density", where=where, low=0)
+                above = p.get("nonspherical_above_mm", 1.0)
+                if p.get("method") == "mie" and shape == "sphere" and 0 < float(lo) < float(hi) \
+                        and 2 * float(hi) * 1e3 < float(above):
+                    radii, weights = stratified_nodes(log_density, float(lo), float(hi), bins, wavelengths)
+                    out += [({"kind": "sphere", "radius": radii[:, i].tolist(), "method": "mie"},
+                             total * weights[:, i]) for i in range(bins)]
+                    continue
                 r, w = gauss_bins(float(lo), float(hi), bins)
                 log_n = log_density(r)
                 n = np.exp(log_n - log_n.max()) * w  # narrow distributions: r^α beyond a double's range
@@ -202,7 +212,7 @@ def populations(rain, sun_elevation_deg):
             else:
                 spec = {"kind": "sphere", "radius": float(diameter / 2), "method": p.get("method", "rays")}
             out.append((spec, float(density)))
-    if sum(d for _, d in out) <= 0:
+    if sum(float(np.sum(d)) for _, d in out) <= 0:
         raise ArgumentError("rain: the populations hold no drops (every number density is 0)")
     return out
 
@@ -250,9 +260,9 @@ def volume_table(scene, *, cache_dir=None, client="serial", workers=None, progre
     tables = scene.get("tables", {})
     sun = scene.get("sun", {})
     elevation = _number(sun, "elevation_deg", 10.0, where="sun")
-    pops = populations(scene.get("rain", {}), elevation)
     wl, theta = wavelengths_of(tables), theta_of(tables)
     sub = band_wavelengths(wl, int(_number(tables, "band_samples", 1, 1, 64, "tables")))
+    pops = populations(scene.get("rain", {}), elevation, sub.size)
     azimuth = any(_needs_azimuth(s) for s, _ in pops)
     phi = None
     if azimuth:
@@ -272,12 +282,13 @@ def volume_table(scene, *, cache_dir=None, client="serial", workers=None, progre
         if not group:
             continue
         pt = sweep.phase_tables([s for s, _ in group], sub.ravel(), theta, phi if two_d else None, **options)
-        density = np.array([d for _, d in group])
+        # (N, L): a number density per particle, or per particle and wavelength
+        density = np.array([np.broadcast_to(d, (sub.size,)) for _, d in group])
         phase = np.asarray(pt.phase, dtype=float)
         if phase.ndim == 3:  # (N, L, T): the same at every φ
             phase = phase[:, :, None, :]
-        beta += np.einsum("n,nl,nlft->lft", density, np.asarray(pt.cross_section), phase)
-        extinction += np.asarray(pt.extinction).T @ density
+        beta += np.einsum("nl,nl,nlft->lft", density, np.asarray(pt.cross_section), phase)
+        extinction += np.sum(density * np.asarray(pt.extinction), axis=0)
         computed += pt.computed
         cached += pt.cached
     # each wavelength's band: the mean of its sub-wavelengths' tables

@@ -186,8 +186,15 @@ def _particle(spec, i):
         if key not in spec and default is ...:
             raise ArgumentError("%s: a %s needs %r" % (name, kind, key))
         out[key] = spec.get(key, default)
+    if kind == "sphere" and isinstance(out["radius"], (list, tuple, np.ndarray)):  # one per wavelength
+        radii = [to_float(r, "%s.radius[%d]" % (name, j)) for j, r in enumerate(out["radius"])]
+        bad = [j for j, r in enumerate(radii) if not (math.isfinite(r) and r > 0)]
+        if not radii or bad:
+            raise ArgumentError("%s.radius: one radius or one per wavelength, each a finite number > 0, got %r"
+                                % (name, out["radius"]))
+        out["radius"] = radii
     for key in ("radius", "diameter", "scale", "temperature_k"):
-        if key in out:
+        if key in out and not isinstance(out[key], list):
             value = out[key] = to_float(out[key], "%s.%s" % (name, key))
             if not math.isfinite(value) or value <= 0:
                 raise ArgumentError("%s.%s must be a finite number > 0, got %r" % (name, key, value))
@@ -275,8 +282,11 @@ def _at_wavelength(spec, j):
     """The particle as the j-th wavelength's task casts it.  Crystals: the j-th run of
     ``orientations`` of their quasi-random sequence, so that the wavelengths' tables
     average over different orientations and a colour summed over them has the noise of
-    all of them together (arcus.halo.orientations); the rest are the same at every
-    wavelength."""
+    all of them together (arcus.halo.orientations); a sphere given a radius per
+    wavelength (a size distribution's moving nodes, arcus.sky): the j-th, for the same
+    reason; the rest are the same at every wavelength."""
+    if spec["kind"] == "sphere" and isinstance(spec["radius"], list):
+        return dict(spec, radius=spec["radius"][j])
     if spec["kind"] != "crystal":
         return spec
     return dict(spec, first_orientation=spec["first_orientation"] + j * spec["orientations"])
@@ -290,8 +300,8 @@ def phase_tables(particles, wavelengths, theta, phi=None, *, grid=1000, max_boun
     ``client``, ``workers``, ``progress``).
 
     Args:
-        particles: a list of dicts: ``{"kind": "sphere", "radius": m, "method": "rays"
-            | "mie"}``, ``{"kind": "raindrop", "diameter": m}``, ``{"kind": "mesh",
+        particles: a list of dicts: ``{"kind": "sphere", "radius": m (or a list, one
+            per wavelength), "method": "rays" | "mie"}``, ``{"kind": "raindrop", "diameter": m}``, ``{"kind": "mesh",
             "path": file, "scale": 1.0, "smooth": True}``, each optionally with
             ``"rotation"`` (3x3, particle -> world), ``"material"`` ("water", "ice") and
             ``"temperature_k"`` (kelvin; ``"temperature"`` in °C is the deprecated key
@@ -306,6 +316,9 @@ def phase_tables(particles, wavelengths, theta, phi=None, *, grid=1000, max_boun
         raise ArgumentError("particles must be a non-empty list of particle dicts, got %r" % (particles,))
     specs = [_particle(p, i) for i, p in enumerate(particles)]
     wl = _wavelengths(wavelengths)
+    for i, s in enumerate(specs):
+        if s["kind"] == "sphere" and isinstance(s["radius"], list) and len(s["radius"]) != wl.size:
+            raise ArgumentError("particles[%d].radius: %d radii for %d wavelengths" % (i, len(s["radius"]), wl.size))
     theta = rainbow._angles(theta, "theta", 0.0, 180.0)
     phi = _phi(phi)
     grid = to_int(grid, "grid", 4, 8192)
