@@ -341,3 +341,25 @@ def test_cli_bad_spec(repo, tmp_path, spec, match):
     assert r.returncode == 2, (r.stdout, r.stderr)
     assert match in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
     assert not (tmp_path / "never.npz").exists()
+
+
+def test_a_radius_per_wavelength_is_each_wavelengths_own_sphere_determinism(tmp_path):
+    """A sphere given one radius per wavelength (a size distribution's moving sizes,
+    arcus.sky) is, at each wavelength, the sphere of that radius: the same tables to the
+    bit as asking for each alone (a determinism test of the bookkeeping); a list of the
+    wrong length or with a bad radius is refused naming it."""
+    theta = np.linspace(130.0, 150.0, 41)
+    radii, wavelengths = [4e-6, 6e-6], [450.0, 600.0]
+    both = sweep.phase_tables([{"kind": "sphere", "radius": radii, "method": "mie"}], wavelengths, theta,
+                              client="serial", cache_dir=False)
+    for j, (r, w) in enumerate(zip(radii, wavelengths)):
+        alone = sweep.phase_tables([{"kind": "sphere", "radius": r, "method": "mie"}], [w], theta,
+                                   client="serial", cache_dir=False)
+        assert np.array_equal(both.phase[0, j], alone.phase[0, 0])
+        assert both.cross_section[0, j] == alone.cross_section[0, 0]
+    with pytest.raises(arcus.ArgumentError, match=r"particles\[0\].radius: 2 radii for 3 wavelengths"):
+        sweep.phase_tables([{"kind": "sphere", "radius": radii, "method": "mie"}], [450.0, 500.0, 600.0], theta,
+                           client="serial", cache_dir=False)
+    with pytest.raises(arcus.ArgumentError, match=r"particles\[0\].radius: one radius or one per wavelength"):
+        sweep.phase_tables([{"kind": "sphere", "radius": [4e-6, -1.0], "method": "mie"}], wavelengths, theta,
+                           client="serial", cache_dir=False)
