@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "arcus/arcus.h"
+#include "rainbow_handles.h"
 
 #ifndef ARCUS_SOURCE_DIR
 #define ARCUS_SOURCE_DIR "."
@@ -22,27 +23,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-struct Ctx {
-  arcus_context_t* ctx = nullptr;
-  Ctx() { EXPECT_EQ(arcus_context_create(ARCUS_DEVICE_DEFAULT, &ctx), ARCUS_SUCCESS) << arcus_last_error(); }
-  ~Ctx() {
-    if (ctx) arcus_context_release(ctx);
-  }
-};
-
-struct Particle {
-  arcus_particle_t* p = nullptr;
-  ~Particle() {
-    if (p) arcus_particle_release(p);
-  }
-};
-
-struct Job {
-  arcus_job_t* job = nullptr;
-  ~Job() {
-    if (job) arcus_job_release(job);
-  }
-};
+using rainbow_test::Ctx;
+using rainbow_test::Job;
+using rainbow_test::Particle;
 
 // The scattering angle of the geometric bow of term p (minimum deviation; thesis
 // eq. 4.20 for p = 2): cos² i = (n² − 1)/(p² − 1), D = 2(i − p τ) + (p − 1)π.

@@ -11,32 +11,15 @@
 #include <vector>
 
 #include "arcus/arcus.h"
+#include "rainbow_handles.h"
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-struct Ctx {
-  arcus_context_t* ctx = nullptr;
-  Ctx() { EXPECT_EQ(arcus_context_create(ARCUS_DEVICE_DEFAULT, &ctx), ARCUS_SUCCESS) << arcus_last_error(); }
-  ~Ctx() {
-    if (ctx) arcus_context_release(ctx);
-  }
-};
-
-struct Particle {
-  arcus_particle_t* p = nullptr;
-  ~Particle() {
-    if (p) arcus_particle_release(p);
-  }
-};
-
-struct Job {
-  arcus_job_t* job = nullptr;
-  ~Job() {
-    if (job) arcus_job_release(job);
-  }
-};
+using rainbow_test::Ctx;
+using rainbow_test::Job;
+using rainbow_test::Particle;
 
 // A cube of half-side 1 as an OBJ file; `dent` moves its corner (1, 1, 1) to (dent,
 // dent, dent), which for dent < 1 makes it concave.
