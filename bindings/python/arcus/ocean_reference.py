@@ -18,6 +18,7 @@ import math
 import numpy as np
 
 from . import discrete_ordinates as do
+from .ocean import _PHASES, EVENTS
 
 #: Gauss nodes over the sky's zenith cosines: 12 and 24 agree within 1.3e-4 relative
 #: for the presets' profiles to 30 m under the sun at 30° and a sky (north_sea: 9e-7).
@@ -49,7 +50,6 @@ def _phase_of_tuple(phase):
 
 def _phase_of_struct(p):
     """A discrete-ordinates phase function from an arcus_phase_function struct."""
-    from .ocean import _PHASES
     kind = {v: k for k, v in _PHASES.items()}[p.kind]
     if kind == "table":
         n = p.table_count
@@ -111,7 +111,6 @@ def elastic_profile(water, lights, depths, *, grid=(380.0, 780.0, 5.0), surface=
     depths = np.asarray(depths, dtype=np.float64).ravel()
     if depths.size == 0 or np.any(depths < 0) or not np.all(np.isfinite(depths)):
         raise ValueError("depths: finite and >= 0, got %r" % (depths,))
-    from .ocean import EVENTS
     c = water.coefficients(grid, context=context)
     wl = c["wavelengths"]
     suns = _as_suns(lights, wl, sky_nodes)
