@@ -52,7 +52,7 @@ def cloud_droplets(p, dist, where):
     mode: n(r) ∝ r^μ exp(−μ r / mode_radius), over [mode/4, 3·mode]."""
     from scipy import stats
 
-    from .sky import _number  # the scene reader's checks (sky imports this module)
+    from .rain import _number  # the scene reader's checks (rain imports this module)
     if dist == "gamma" and "mode_radius" in p:
         if "effective_radius" in p or "effective_variance" in p:
             raise ArgumentError("%s: give a gamma distribution either mode_radius and mu or effective_radius and "
