@@ -146,16 +146,20 @@ PhotonMap::PhotonMap(arcus_context_t* ctx, const Photons& in) : runtime_(ctx->ru
   std::vector<double> dirs(3 * n);
   for (size_t i = 0; i < n; ++i) {
     const double* p = &in.positions[3 * i];
-    const std::string which = "photon map: photon " + std::to_string(i);
-    require(finite3(p), which + ": position " + triple(p) + " is not finite");
-    require(bvh::representable(p), which + ": position " + triple(p) + " lies beyond the " +
-                                       number(bvh::kMaxCoordinate) + " m from the origin that the BVH can represent");
-    require(normalise(&in.directions[3 * i], &dirs[3 * i]),
-            which + ": direction " + triple(&in.directions[3 * i]) + " is zero or not finite");
+    // The message is built only for a bad photon: millions of good ones pass here.
+    auto which = [i] { return "photon map: photon " + std::to_string(i); };
+    if (!finite3(p)) fail(ARCUS_ERROR_INVALID_ARGUMENT, which() + ": position " + triple(p) + " is not finite");
+    if (!bvh::representable(p))
+      fail(ARCUS_ERROR_INVALID_ARGUMENT, which() + ": position " + triple(p) + " lies beyond the " +
+                                             number(bvh::kMaxCoordinate) + " m from the origin that the BVH can represent");
+    if (!normalise(&in.directions[3 * i], &dirs[3 * i]))
+      fail(ARCUS_ERROR_INVALID_ARGUMENT,
+           which() + ": direction " + triple(&in.directions[3 * i]) + " is zero or not finite");
     for (int c = 0; c < ch; ++c) {
       const double w = in.powers[ch * i + c];
-      require(std::isfinite(w) && w >= 0, which + ": power[" + std::to_string(c) + "] = " + number(w) +
-                                              " is not a finite number >= 0");
+      if (!(std::isfinite(w) && w >= 0))
+        fail(ARCUS_ERROR_INVALID_ARGUMENT,
+             which() + ": power[" + std::to_string(c) + "] = " + number(w) + " is not a finite number >= 0");
     }
     for (int a = 0; a < 3; ++a) bounds[i].lo[a] = bounds[i].hi[a] = p[a];  // a point: zero-size bounds
   }
