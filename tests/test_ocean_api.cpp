@@ -55,10 +55,12 @@ TEST(OceanApi, DefaultsAreTheThesis) {
   ASSERT_EQ(arcus_ocean_trace_params_init(&p), ARCUS_SUCCESS);
   EXPECT_EQ(p.photons, 400000u);
   EXPECT_EQ(p.max_interactions, 5u);  // §5.3
+  EXPECT_EQ(p.wavelengths_per_photon, 4u);  // hero wavelengths: 3 on the 81-sample grid
   arcus_ocean_march m;
   ASSERT_EQ(arcus_ocean_march_init(&m), ARCUS_SUCCESS);
   EXPECT_EQ(m.steps, 200u);
   EXPECT_EQ(m.k, 250u);
+  EXPECT_EQ(m.estimate_stride, 1u);  // the thesis': every pixel
   arcus_ocean_setup s;
   ASSERT_EQ(arcus_ocean_setup_init(&s), ARCUS_SUCCESS);
   EXPECT_EQ(s.grid.first_nm, 380);

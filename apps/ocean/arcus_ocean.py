@@ -352,7 +352,7 @@ def cmd_render(ctx, doc, args):
         exr, png = str(d / "image.exr"), str(d / "image.png")
     with Progress("rendering", quiet=args.quiet) as bar:
         result = ocean.render(args.scene, photons=args.photons, k=args.k, steps=args.steps, estimator=args.estimator,
-                              exr=exr, png=png, progress=bar, context=ctx)
+                              thesis=args.thesis, exr=exr, png=png, progress=bar, context=ctx)
     h, w = result.image.shape[:2]
     stats = ", ".join("%s %.3g" % (k, v) for k, v in result.stats.items() if isinstance(v, float))
     print("%s: %dx%d; %s; wrote %s" % (doc["name"], w, h, stats, " and ".join(p for p in (exr, png) if p)))
@@ -386,6 +386,8 @@ def parser():
     r.add_argument("--k", type=int, help="photons per radiance estimate (default: the scene's)")
     r.add_argument("--steps", type=int, help="ray-marching steps (default: the scene's)")
     r.add_argument("--estimator", choices=("per_step", "beam"), help="radiance estimate (default: the scene's)")
+    r.add_argument("--thesis", action="store_true", help="the thesis' settings: 400 000 photons of one wavelength, "
+                   "k = 250, the estimate at every pixel (then --photons, --k override)")
     return p
 
 

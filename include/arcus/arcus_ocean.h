@@ -158,12 +158,16 @@ typedef struct arcus_ocean_trace_params {
   uint64_t seed;
   int32_t store_photons;     /* 1: keep scattered photons (photon map)   */
   int32_t force_inelastic;   /* 1: compile the inelastic code anyway     */
+  /* Wavelengths each stored photon carries, 1..4 (4): hero-wavelength sampling, the
+   * largest divisor of the grid's sample count not above this (81 samples: 3);
+   * 1: the thesis' one wavelength per photon.  The tallies follow the hero alone. */
+  uint32_t wavelengths_per_photon;
   arcus_progress_callback progress;
   void* progress_user;
 } arcus_ocean_trace_params;
 
 /* Grid 380-780 nm at 5 nm, no lights, unbounded water, n 1.34; 400 000 photons, 5
- * interactions, seed 1. */
+ * interactions, seed 1, 4 wavelengths per photon. */
 ARCUS_API arcus_status arcus_ocean_setup_init(arcus_ocean_setup* setup);
 ARCUS_API arcus_status arcus_ocean_trace_params_init(arcus_ocean_trace_params* params);
 
@@ -191,7 +195,8 @@ ARCUS_API arcus_status arcus_job_get_ocean_by_interaction(arcus_job_t* job, doub
  * (depth_count × count): downward and upward plane irradiance, scalar irradiance. */
 ARCUS_API arcus_status arcus_job_get_ocean_irradiance(arcus_job_t* job, double* ed, double* eu, double* e0);
 /* The stored photons: *count, then (any pointer may be NULL) positions (× 3), the
- * directions they arrived along (× 3), powers [W], wavelengths [nm], events. */
+ * directions they arrived along (× 3), powers [W], wavelengths [nm], events.  A photon
+ * carrying several wavelengths is listed once per wavelength, at the same place. */
 ARCUS_API arcus_status arcus_job_get_ocean_photons(arcus_job_t* job, size_t* count, double* positions,
                                                    double* directions, double* powers, double* wavelengths,
                                                    int32_t* events);
@@ -207,11 +212,14 @@ ARCUS_API arcus_status arcus_job_get_ocean_photons(arcus_job_t* job, size_t* cou
 typedef struct arcus_ocean_march {
   uint32_t steps;             /* 200 */
   double distance;            /* how far rays are marched [m]: 20 */
-  uint32_t k;                 /* photons per estimate: 250 */
+  uint32_t k;                 /* photons per estimate: 250 (per step ≤ 512; beam: each
+                               * photon's radius holds k, ≤ 65536) */
   int32_t estimator;          /* ARCUS_OCEAN_ESTIMATE_* */
   int32_t single_scattering;  /* 1 */
   int32_t multiple_scattering;/* 1 (0: no photons are traced) */
   double exposure;            /* PNG: linear sRGB × exposure: 1 */
+  uint32_t estimate_stride;   /* the photon estimate at every n-th pixel across and down,
+                               * bilinear between: 1 (every pixel, the thesis'), ≤ 64 */
 } arcus_ocean_march;
 ARCUS_API arcus_status arcus_ocean_march_init(arcus_ocean_march* march);
 

@@ -89,11 +89,19 @@
 #define ARCUS_OCEAN_T_ESCAPED(limit) (38 + (limit)) /* escaped after j interactions (0..limit) */
 #define ARCUS_OCEAN_TALLY_REALS(limit) (39 + 2 * (limit))
 
+/* Wavelengths a photon carries at most (hero-wavelength sampling, trace.cl): the
+ * hero, which draws the path, and companions that share it until an inelastic event. */
+#define ARCUS_OCEAN_MAX_HEROES 4
+
 /* A stored photon (ARCUS_OCEAN_PHOTON_REALS reals per slot; slot = photon·limit + j):
- * where it scattered, the direction it arrived along (unit), its power after the
- * event, its wavelength after it [nm], and the event (ARCUS_OCEAN_SCATTER_*, or an
- * inelastic one); power 0 marks an empty slot. */
-#define ARCUS_OCEAN_PHOTON_REALS 9
+ * where it scattered (3), the direction it arrived along (3, unit), the event
+ * (ARCUS_OCEAN_SCATTER_*, or an inelastic one), then per carried wavelength its power
+ * after the event [W] (ARCUS_OCEAN_MAX_HEROES, 0 where none) and its wavelength [nm]
+ * (as many); a first power of 0 marks an empty slot. */
+#define ARCUS_OCEAN_STORED_EVENT 6
+#define ARCUS_OCEAN_STORED_POWER 7
+#define ARCUS_OCEAN_STORED_NM (7 + ARCUS_OCEAN_MAX_HEROES)
+#define ARCUS_OCEAN_PHOTON_REALS (7 + 2 * ARCUS_OCEAN_MAX_HEROES)
 
 /* The three scatterers' phase functions (water, minerals and detritus, phytoplankton):
  * kind (ARCUS_OCEAN_PHASE_*), parameters, and for tables where in `water` they are. */
@@ -116,6 +124,7 @@
     U64 seed;                                                                                     \
     U64 first_photon, end_photon; /* this launch traces photons [first, end)              */      \
     I count;                  /* grid samples n                                              */   \
+    I heroes;                 /* wavelengths a stored photon carries: divides count          */   \
     I events;                 /* active events                                               */   \
     I event_ids[10];          /* their ids, roulette order                                   */   \
     I limit;                  /* interaction limit (thesis §5.3: 5)                          */   \
@@ -166,11 +175,18 @@ ARCUS_DECLARE_OCEAN_DESC(arcus_ocean_desc, arcus_ocean_phases, double, int32_t, 
     I width, height, count, steps, k, light_count, g_samples;                                     \
     I first_pixel, end_pixel;  /* this launch's pixels                                       */   \
     I single;                  /* 1: single scattering from the lights                       */   \
+    I multiple;                /* 1: multiple scattering from the photon map                 */   \
+    I stride;                  /* a pixel here is stride × stride of the image's              */   \
+    I image_width, image_height; /* the image's pixels (width, height: this pass's)          */   \
     I surface;                 /* 1: the flat sea surface at z = 0 ends every ray reaching it */   \
   } NAME
 
-/* A stored photon in the map's power channels: power, grid sample, event. */
-#define ARCUS_OCEAN_MAP_CHANNELS 3
+/* A stored photon in the map's power channels: its event, then per carried wavelength
+ * its power (ARCUS_OCEAN_MAX_HEROES channels, 0 where none) and its grid sample. */
+#define ARCUS_OCEAN_MAP_EVENT 0
+#define ARCUS_OCEAN_MAP_POWER 1
+#define ARCUS_OCEAN_MAP_BIN (1 + ARCUS_OCEAN_MAX_HEROES)
+#define ARCUS_OCEAN_MAP_CHANNELS (1 + 2 * ARCUS_OCEAN_MAX_HEROES)
 
 #ifdef __OPENCL_C_VERSION__
 ARCUS_DECLARE_OCEAN_RENDER_DESC(ocean_render_desc, ocean_phases, REAL, int);
@@ -196,6 +212,7 @@ ARCUS_DECLARE_OCEAN_RENDER_DESC(arcus_ocean_render_desc, arcus_ocean_phases, dou
   X(__global const REAL*, photons)   \
   X(const photon_map_desc, map)      \
   X(const int, k)                    \
+  X(const int, kr)                   \
   X(const int, chunk)                \
   X(__global REAL*, radii)
 

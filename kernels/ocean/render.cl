@@ -6,7 +6,8 @@
  * stored at scattering events from the second interaction on, with the power and
  * wavelength they leave with, so inelastic re-emission is already in their
  * wavelengths: the estimate weighs each by its scatterer's phase function (isotropic
- * for an inelastic event).
+ * for an inelastic event).  A stored photon may carry several wavelengths (hero
+ * wavelengths, trace.cl), each with its power: all of them are added.
  *
  * Two estimates of the multiple scattering:
  *   per step (the thesis'): the k nearest photons of each march point,
@@ -76,10 +77,11 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
   __global const REAL* sigma_s = optics + 3 * n;
   const ocean_phases* phases = &rd.phases;
 
-  /* The ray through the pixel's centre. */
+  /* The ray through the pixel's centre (a pixel of this pass spans stride × stride of
+   * the image's). */
   const int px = pixel % rd.width, py = pixel / rd.width;
-  const REAL sx = RC(2) * ((REAL)px + RC(0.5)) / (REAL)rd.width - RC(1);
-  const REAL sy = RC(1) - RC(2) * ((REAL)py + RC(0.5)) / (REAL)rd.height;
+  const REAL sx = RC(2) * ((REAL)px + RC(0.5)) * (REAL)rd.stride / (REAL)rd.image_width - RC(1);
+  const REAL sy = RC(1) - RC(2) * ((REAL)py + RC(0.5)) * (REAL)rd.stride / (REAL)rd.image_height;
   const REAL3 eye = (REAL3)(rd.eye[0], rd.eye[1], rd.eye[2]);
   const REAL3 dir = normalize((REAL3)(rd.forward[0], rd.forward[1], rd.forward[2]) +
                               sx * (REAL3)(rd.right[0], rd.right[1], rd.right[2]) +
@@ -146,8 +148,9 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
     /* ---- multiple scattering: the k nearest photons (eq. 4.6) */
     /* The last step's k photons lie within r_last + Δt of this point (triangle
      * inequality), so that bound loses none of the k nearest and prunes the search. */
-    const int found = photon_knn(nodes, photons, map, x.x, x.y, x.z, RC(0), RC(0), RC(0), rd.k, bound * bound, d2,
-                                 slot);
+    const int found = rd.multiple ? photon_knn(nodes, photons, map, x.x, x.y, x.z, RC(0), RC(0), RC(0), rd.k,
+                                               bound * bound, d2, slot)
+                                  : 0;
     if (found > 0) {
       const REAL r = sqrt(d2[0]);
       bound = found == rd.k ? r + rd.step * RC(1.000001) : (REAL)INFINITY;
@@ -156,9 +159,12 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
         const int q = slot[i];
         const REAL mu = -(OCEAN_MAP(ARCUS_PHOTON_DIRECTION, q) * dir.x + OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 1, q) * dir.y +
                           OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 2, q) * dir.z);
-        const int b = (int)OCEAN_MAP(ARCUS_PHOTON_POWER + 1, q);
-        const REAL p = ocean_photon_phase(phases, optics, (int)OCEAN_MAP(ARCUS_PHOTON_POWER + 2, q), mu);
-        out[b] += T[b] * p * OCEAN_MAP(ARCUS_PHOTON_POWER, q) * scale;
+        const REAL p = ocean_photon_phase(phases, optics, (int)OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_EVENT, q), mu);
+        for (int j = 0; j < ARCUS_OCEAN_MAX_HEROES; ++j) { /* the wavelengths it carries */
+          const REAL power = OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_POWER + j, q);
+          const int b = (int)OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_BIN + j, q);
+          out[b] += T[b] * p * power * scale;
+        }
       }
     }
 #endif
@@ -173,7 +179,7 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
   const REAL3 inv = (REAL3)(RC(1) / dir.x, RC(1) / dir.y, RC(1) / dir.z);
   int stack[ARCUS_BVH_MAX_DEPTH];
   int top = 0, node = 0;
-  if (map.count > 0)
+  if (rd.multiple && map.count > 0)
     for (;;) {
       __global const bvh_node* nd = nodes + node;
       /* slab test of the node's box against the segment [0, length_max] */
@@ -194,9 +200,15 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
             const REAL mu = -(OCEAN_MAP(ARCUS_PHOTON_DIRECTION, q) * dir.x +
                               OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 1, q) * dir.y +
                               OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 2, q) * dir.z);
-            const int b = (int)OCEAN_MAP(ARCUS_PHOTON_POWER + 1, q);
-            const REAL p = ocean_photon_phase(phases, optics, (int)OCEAN_MAP(ARCUS_PHOTON_POWER + 2, q), mu);
-            out[b] += exp(-sigma_t[b] * tc) * p * OCEAN_MAP(ARCUS_PHOTON_POWER, q) * per_nm / (OCEAN_PI * r * r);
+            const REAL p = ocean_photon_phase(phases, optics, (int)OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_EVENT, q),
+                                              mu) *
+                           per_nm / (OCEAN_PI * r * r);
+            for (int j = 0; j < ARCUS_OCEAN_MAX_HEROES; ++j) { /* the wavelengths it carries */
+              const REAL power = OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_POWER + j, q);
+              if (power == RC(0)) continue;
+              const int b = (int)OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_BIN + j, q);
+              out[b] += exp(-sigma_t[b] * tc) * p * power;
+            }
           }
         } else {
           stack[top++] = nd->first + 1;
@@ -210,24 +222,29 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
 #endif
 }
 
-/* Each photon's radius for the beam estimate: the distance to its k-th nearest photon
- * (itself included, as Jarosz et al. gather it).  A work-item takes `chunk`
- * consecutive slots, neighbours in the map's BVH order: the last one's radius plus the
- * distance moved bounds this one's (triangle inequality), which prunes the search and
- * loses none of the k nearest. */
+/* Each photon's radius for the beam estimate: the distance that holds its k nearest
+ * photons (itself included, as Jarosz et al. gather it), estimated from its kr ≤ k
+ * nearest as r_kr (k/kr)^(1/3), the radius at which a locally uniform density holds k:
+ * a query's cost grows with the photons it keeps.  (Any radius gives a consistent
+ * estimate; the radius only trades noise for blur.)  A work-item takes `chunk`
+ * consecutive slots, neighbours in the map's BVH order: the last one's kr-th distance
+ * plus the distance moved bounds this one's (triangle inequality), which prunes the
+ * search and loses none of the kr nearest. */
 __kernel void arcus_ocean_photon_radii(ARCUS_PARAMS(ARCUS_OCEAN_RADII_ARGS)) {
   const int first = (int)get_global_id(0) * chunk;
   REAL d2[ARCUS_PHOTON_MAX_K];
   int slot[ARCUS_PHOTON_MAX_K];
   REAL bound = (REAL)INFINITY;
   REAL3 last = (REAL3)(RC(0), RC(0), RC(0));
+  const REAL scale = cbrt((REAL)k / (REAL)kr);
   for (int q = first; q < min(first + chunk, map.count); ++q) {
     const REAL3 x = (REAL3)(OCEAN_MAP(ARCUS_PHOTON_POSITION, q), OCEAN_MAP(ARCUS_PHOTON_POSITION + 1, q),
                             OCEAN_MAP(ARCUS_PHOTON_POSITION + 2, q));
     const REAL limit = bound + length(x - last) * RC(1.000001);
-    const int found = photon_knn(nodes, photons, map, x.x, x.y, x.z, RC(0), RC(0), RC(0), k, limit * limit, d2, slot);
-    radii[q] = found > 0 ? sqrt(d2[0]) : RC(0);
-    bound = found == k ? radii[q] : (REAL)INFINITY;
+    const int found = photon_knn(nodes, photons, map, x.x, x.y, x.z, RC(0), RC(0), RC(0), kr, limit * limit, d2, slot);
+    const REAL r = found > 0 ? sqrt(d2[0]) : RC(0);
+    radii[q] = r * scale;
+    bound = found == kr ? r : (REAL)INFINITY;
     last = x;
   }
 }

@@ -15,6 +15,19 @@
  * it) reads blocks 4 + 4L … 7 + 4L; emission reads blocks 0, 1 and (a point of a lit
  * disc on the surface) 2.
  *
+ * Hero wavelengths (Wilkie et al. 2014, "Hero wavelength spectral sampling"): the
+ * stored photons carry d.heroes wavelengths, the hero's grid sample k and companions
+ * at k + j·count/heroes (cyclically, so each of them, drawn as the hero, would carry
+ * the same set).  The hero draws the path; the set shares it until an inelastic event
+ * (after which the hero goes on alone: only its wavelength was re-emitted).  Each
+ * stored photon splits the hero's power among the set by the balance heuristic over
+ * "which of them was the hero": wavelength j's share is L_j / Σ L_i, L_i its emission
+ * probability times the path's density at λ_i (σ_e e^(−σ_t s) per interaction,
+ * e^(−σ_t s) per flight to a boundary; Fresnel, the bottom and the directions do not
+ * depend on λ).  Unbiased per wavelength; one wavelength per photon puts each grid
+ * sample's light in a different few photons, so colours came out blotchy.  The energy
+ * tallies and the irradiance profiles follow the hero alone (the thesis' estimator).
+ *
  * Features: ARCUS_USE_OCEAN_INELASTIC (the inelastic events), ARCUS_USE_OCEAN_BOUNDARIES
  * (surface, bottom, box), ARCUS_USE_OCEAN_DEPTHS (irradiance tallies at depths).   */
 
@@ -163,6 +176,35 @@ ARCUS_INLINE int ocean_roulette(const ocean_desc* d, __global const REAL* water,
   return d->event_ids[d->events - 1]; /* rounding at the top end */
 }
 
+/* The coefficient of event id e at grid sample k (0 for an event the water lacks). */
+ARCUS_INLINE REAL ocean_event_coefficient(const ocean_desc* d, __global const REAL* water, int e, int k) {
+  for (int a = 0; a < d->events; ++a)
+    if (d->event_ids[a] == e) return water[(size_t)a * (size_t)d->count + (size_t)k];
+  return RC(0);
+}
+
+/* The extinction σ_t at grid sample k. */
+ARCUS_INLINE REAL ocean_extinction_at(const ocean_desc* d, __global const REAL* water, int k) {
+  REAL sum = RC(0);
+  for (int a = 0; a < d->events; ++a) sum += water[(size_t)a * (size_t)d->count + (size_t)k];
+  return sum;
+}
+
+/* The carried wavelengths' path densities times e^(−σ_t len) and, for an interaction
+ * (e ≥ 0), σ_e; rescaled so that the largest is 1 (only their ratios matter). */
+ARCUS_INLINE void ocean_heroes_follow(const ocean_desc* d, __global const REAL* water, int heroes, const int* hk,
+                                      REAL* like, REAL len, int e) {
+  if (heroes < 2) return;
+  REAL top = RC(0);
+  for (int j = 0; j < heroes; ++j) {
+    like[j] *= exp(-ocean_extinction_at(d, water, hk[j]) * len);
+    if (e >= 0) like[j] *= ocean_event_coefficient(d, water, e, hk[j]);
+    top = fmax(top, like[j]);
+  }
+  if (top > RC(0))
+    for (int j = 0; j < heroes; ++j) like[j] /= top;
+}
+
 #ifdef ARCUS_USE_OCEAN_BOUNDARIES
 /* Distance along dir to the nearest boundary, and which: 0 box (*face: the axis, +3
  * for its upper face), 1 surface, 2 bottom. */
@@ -255,6 +297,15 @@ __kernel void arcus_ocean_trace(ARCUS_PARAMS(ARCUS_OCEAN_TRACE_ARGS)) {
     }
     __global const REAL* L = lights + (size_t)(hi / d.count) * ARCUS_OCEAN_LIGHT_REALS;
     REAL nm = d.first_nm + d.step_nm * (REAL)(hi % d.count);
+    /* the carried set: grid samples count/heroes apart, each L_j from its pair's
+     * emission probability (the same light) */
+    int heroes = d.heroes, hk[ARCUS_OCEAN_MAX_HEROES];
+    REAL like[ARCUS_OCEAN_MAX_HEROES];
+    for (int j = 0; j < heroes; ++j) {
+      hk[j] = (hi % d.count + j * (d.count / heroes)) % d.count;
+      const int pair = (hi / d.count) * d.count + hk[j];
+      like[j] = emission[pair] - (pair > 0 ? emission[pair - 1] : RC(0));
+    }
     const int kind = (int)L[0];
     REAL3 p = (REAL3)(L[1], L[2], L[3]), axis = (REAL3)(L[4], L[5], L[6]), dir;
     REAL a0, a1;
@@ -317,6 +368,7 @@ __kernel void arcus_ocean_trace(ARCUS_PARAMS(ARCUS_OCEAN_TRACE_ARGS)) {
         if (which == 2) q.z = -d.bottom_depth;
         if (which == 0 && face == 2) q.z = d.box_lo[2];
         if (which == 0 && face == 5) q.z = d.box_hi[2];
+        ocean_heroes_follow(dp, water, heroes, hk, like, to_wall, -1);
 #ifdef ARCUS_USE_OCEAN_DEPTHS
         ocean_tally_depths(dp, depths, depth_row, p.z, q.z, to_wall, power, ocean_bin(dp, nm));
 #endif
@@ -360,6 +412,7 @@ __kernel void arcus_ocean_trace(ARCUS_PARAMS(ARCUS_OCEAN_TRACE_ARGS)) {
       ++n;
       t[ARCUS_OCEAN_T_INTERACTIONS] += RC(1);
       const int e = ocean_roulette(dp, water, k0, k1, tw, ur * sigma_t);
+      ocean_heroes_follow(dp, water, heroes, hk, like, s, e);
       t[ARCUS_OCEAN_T_COUNT + e] += RC(1);
       t[ARCUS_OCEAN_T_ARRIVING + e] += power;
       const REAL3 arrived = dir;
@@ -382,6 +435,7 @@ __kernel void arcus_ocean_trace(ARCUS_PARAMS(ARCUS_OCEAN_TRACE_ARGS)) {
         t[ARCUS_OCEAN_T_BY_INTERACTION + min(n, d.bins)] += power * (RC(1) - ratio);
         power *= ratio;
         nm = out_nm;
+        heroes = 1; /* only the hero's wavelength was re-emitted: it goes on alone */
         dir = ocean_turn((REAL3)(RC(0), RC(0), RC(1)), RC(1) - RC(2) * um, RC(2) * OCEAN_PI * uphi);
       }
 #endif
@@ -400,9 +454,18 @@ __kernel void arcus_ocean_trace(ARCUS_PARAMS(ARCUS_OCEAN_TRACE_ARGS)) {
         sp[3] = arrived.x;
         sp[4] = arrived.y;
         sp[5] = arrived.z;
-        sp[6] = power;
-        sp[7] = nm;
-        sp[8] = (REAL)e;
+        sp[ARCUS_OCEAN_STORED_EVENT] = (REAL)e;
+        if (heroes == 1) {
+          sp[ARCUS_OCEAN_STORED_POWER] = power;
+          sp[ARCUS_OCEAN_STORED_NM] = nm;
+        } else {
+          REAL sum = RC(0);
+          for (int j = 0; j < heroes; ++j) sum += like[j];
+          for (int j = 0; j < heroes; ++j) {
+            sp[ARCUS_OCEAN_STORED_POWER + j] = power * like[j] / sum;
+            sp[ARCUS_OCEAN_STORED_NM + j] = d.first_nm + d.step_nm * (REAL)hk[j];
+          }
+        }
         t[ARCUS_OCEAN_T_STORED] += RC(1);
       }
       if (n >= d.limit) {

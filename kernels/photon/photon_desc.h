@@ -13,10 +13,10 @@
 #include "common/real.h" /* the device source has it prepended */
 #endif
 
-/* Power channels per photon: 1 to 4 chosen at run time (3 for RGB; the ocean engine's
- * spectral bins).  The limit keeps an estimate's sums in registers; more bins need
- * several maps, or a raise here (private memory per work-item grows with it). */
-#define ARCUS_PHOTON_CHANNELS 4
+/* Power channels per photon: 1 to 9 chosen at run time (3 for RGB; the ocean engine's
+ * event and its photons' wavelengths and powers, ocean/ocean_desc.h).  The limit keeps
+ * an estimate's sums in private memory; more need a raise here. */
+#define ARCUS_PHOTON_CHANNELS 9
 /* Largest k of a k-nearest-neighbour query: the bounded heap lives in private memory
  * (512 × (8 + 4) bytes in double precision). */
 #define ARCUS_PHOTON_MAX_K 512

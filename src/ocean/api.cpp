@@ -190,6 +190,7 @@ TraceInput trace_input(const arcus_ocean_setup* setup, const arcus_ocean_trace_p
   p.seed = params->seed;
   p.store = params->store_photons != 0;
   p.force_inelastic = params->force_inelastic != 0;
+  p.wavelengths_per_photon = static_cast<int>(std::min<uint32_t>(params->wavelengths_per_photon, 1u << 20));
   p.depths = copy_array(setup->depths, setup->depth_count, "setup.depths");
   p.layer = setup->layer;
   return in;
@@ -204,6 +205,7 @@ ocean::MarchParams march_of(const arcus_ocean_march& s) {
   m.single_scattering = s.single_scattering != 0;
   m.multiple_scattering = s.multiple_scattering != 0;
   m.exposure = s.exposure;
+  m.estimate_stride = static_cast<int>(std::min<uint32_t>(s.estimate_stride, 1u << 20));
   return m;
 }
 
@@ -312,6 +314,7 @@ arcus_status arcus_ocean_trace_params_init(arcus_ocean_trace_params* params) {
     params->photons = 400000;
     params->max_interactions = 5;
     params->seed = 1;
+    params->wavelengths_per_photon = ocean::TraceParams{}.wavelengths_per_photon;
   });
 }
 
@@ -379,13 +382,23 @@ arcus_status arcus_job_get_ocean_photons(arcus_job_t* job, size_t* count, double
                                          double* powers, double* wavelengths, int32_t* events) {
   return on_trace_job(job, [&](ocean::TraceJob* j) {
     require_pointer(count, "count");
+    // One entry per carried wavelength (a power > 0), at its photon's place.
     const ocean::StoredPhotons& s = j->photons;
-    *count = s.size();
-    copy_out(s.positions, positions);
-    copy_out(s.directions, directions);
-    copy_out(s.powers, powers);
-    copy_out(s.wavelengths, wavelengths);
-    copy_out(s.events, events);
+    size_t n = 0;
+    for (size_t i = 0; i < s.size(); ++i)
+      for (int h = 0; h < ARCUS_OCEAN_MAX_HEROES; ++h) {
+        const size_t c = i * ARCUS_OCEAN_MAX_HEROES + h;
+        if (!(s.powers[c] > 0)) continue;
+        for (int a = 0; a < 3; ++a) {
+          if (positions) positions[3 * n + a] = s.positions[3 * i + a];
+          if (directions) directions[3 * n + a] = s.directions[3 * i + a];
+        }
+        if (powers) powers[n] = s.powers[c];
+        if (wavelengths) wavelengths[n] = s.wavelengths[c];
+        if (events) events[n] = s.events[i];
+        ++n;
+      }
+    *count = n;
   });
 }
 
@@ -401,6 +414,7 @@ arcus_status arcus_ocean_march_init(arcus_ocean_march* march) {
     march->single_scattering = d.single_scattering;
     march->multiple_scattering = d.multiple_scattering;
     march->exposure = d.exposure;
+    march->estimate_stride = static_cast<uint32_t>(d.estimate_stride);
   });
 }
 

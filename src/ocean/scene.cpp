@@ -267,10 +267,11 @@ Medium parse_medium(const Node& n) {
 }
 
 void parse_photons(const Node& n, TraceParams* p) {
-  n.expect_object({"count", "max_interactions", "seed"});
+  n.expect_object({"count", "max_interactions", "seed", "wavelengths_per_photon"});
   if (auto v = n.find("count")) p->photons = v->integer(uint64_t(1) << 40);
   if (auto v = n.find("max_interactions")) p->max_interactions = static_cast<int>(v->integer(1u << 20));
   if (auto v = n.find("seed")) p->seed = v->integer(uint64_t(1) << 53);  // exact in a double
+  if (auto v = n.find("wavelengths_per_photon")) p->wavelengths_per_photon = static_cast<int>(v->integer(1u << 20));
 }
 
 void parse_profile(const Node& n, TraceParams* p) {
@@ -281,7 +282,8 @@ void parse_profile(const Node& n, TraceParams* p) {
 
 
 MarchParams parse_march(const Node& n) {
-  n.expect_object({"steps", "distance", "k", "estimator", "single_scattering", "multiple_scattering", "exposure"});
+  n.expect_object({"steps", "distance", "k", "estimator", "single_scattering", "multiple_scattering", "estimate_stride",
+                   "exposure"});
   MarchParams m;
   if (auto v = n.find("steps")) {
     m.steps = static_cast<int>(v->integer(1000000));
@@ -296,6 +298,10 @@ MarchParams parse_march(const Node& n) {
     m.estimator = v->choice<MarchParams::Estimator>({{"per_step", MarchParams::per_step}, {"beam", MarchParams::beam}});
   if (auto v = n.find("single_scattering")) m.single_scattering = v->boolean();
   if (auto v = n.find("multiple_scattering")) m.multiple_scattering = v->boolean();
+  if (auto v = n.find("estimate_stride")) {
+    m.estimate_stride = static_cast<int>(v->integer(64));
+    if (m.estimate_stride < 1) v->fail("expected at least 1 pixel");
+  }
   if (auto v = n.find("exposure")) m.exposure = positive(*v);
   return m;
 }

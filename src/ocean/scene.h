@@ -22,6 +22,10 @@ struct MarchParams {
   enum Estimator : int { per_step = 0, beam = 1 } estimator = per_step;  // beam: Jarosz et al. 2008
   bool single_scattering = true;    // from the lights, elastic and inelastic (eq. 4.5)
   bool multiple_scattering = true;  // from the photon map, elastic and inelastic (eq. 4.6)
+  // The photon map's estimate is made at every estimate_stride-th pixel across and
+  // down and interpolated bilinearly between (1: at every pixel, the thesis').  The
+  // estimate is smooth over its photons' radii, which span many pixels.
+  int estimate_stride = 1;
   double exposure = 1;              // PNG: linear sRGB × exposure before encoding
 };
 

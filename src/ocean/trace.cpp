@@ -208,6 +208,9 @@ void check_trace(const std::vector<Light>& lights, const Medium& m, const TraceP
     require(!std::isnan(m.box_lo[a]) && !std::isnan(m.box_hi[a]) && m.box_lo[a] < m.box_hi[a],
             "setup.box: lo must be below hi on every axis");
   require(p.photons > 0, "params.photons: must be > 0");
+  require(p.wavelengths_per_photon >= 1 && p.wavelengths_per_photon <= ARCUS_OCEAN_MAX_HEROES,
+          "params.wavelengths_per_photon: must be in 1.." + std::to_string(ARCUS_OCEAN_MAX_HEROES) + ", got " +
+              std::to_string(p.wavelengths_per_photon));
   require(p.max_interactions >= 1 && p.max_interactions <= ARCUS_OCEAN_MAX_INTERACTIONS,
           "params.max_interactions: must be in 1.." + std::to_string(ARCUS_OCEAN_MAX_INTERACTIONS) + ", got " +
               std::to_string(p.max_interactions));
@@ -220,6 +223,12 @@ void check_trace(const std::vector<Light>& lights, const Medium& m, const TraceP
             "setup.depths: irradiance profiles need a plane-parallel column (surface = 1, or box_hi z = 0)");
     require(std::isfinite(p.layer) && p.layer > 0, "setup.layer: must be finite and > 0, got " + number(p.layer));
   }
+}
+
+int carried_wavelengths(int requested, int grid_count) {
+  int h = std::clamp(requested, 1, ARCUS_OCEAN_MAX_HEROES);
+  while (grid_count % h != 0) --h;  // the set must be the same whichever member is the hero
+  return h;
 }
 
 arcus_features trace_features(const WaterTables& water, const Medium& medium, const TraceParams& params) {
@@ -292,6 +301,7 @@ void trace_into(TraceJob* job, arcus_context_t* ctx, const WaterTables& water, c
   d.layer = params.layer;
   d.seed = params.seed;
   d.count = grid.count;
+  d.heroes = carried_wavelengths(params.wavelengths_per_photon, grid.count);
   d.limit = params.max_interactions;
   d.bins = std::min(d.limit, ARCUS_OCEAN_INTERACTION_BINS);
   d.light_count = static_cast<int32_t>(lights.size());
@@ -387,12 +397,12 @@ void trace_into(TraceJob* job, arcus_context_t* ctx, const WaterTables& water, c
     StoredPhotons& sp = job->photons;
     for (size_t s = 0; s < store_slots; ++s) {
       const double* x = &stored[s * ARCUS_OCEAN_PHOTON_REALS];
-      if (!(x[6] > 0)) continue;
+      if (!(x[ARCUS_OCEAN_STORED_POWER] > 0)) continue;
       sp.positions.insert(sp.positions.end(), x, x + 3);
       sp.directions.insert(sp.directions.end(), x + 3, x + 6);
-      sp.powers.push_back(x[6]);
-      sp.wavelengths.push_back(x[7]);
-      sp.events.push_back(static_cast<int32_t>(x[8]));
+      sp.events.push_back(static_cast<int32_t>(x[ARCUS_OCEAN_STORED_EVENT]));
+      sp.powers.insert(sp.powers.end(), x + ARCUS_OCEAN_STORED_POWER, x + ARCUS_OCEAN_STORED_POWER + ARCUS_OCEAN_MAX_HEROES);
+      sp.wavelengths.insert(sp.wavelengths.end(), x + ARCUS_OCEAN_STORED_NM, x + ARCUS_OCEAN_STORED_NM + ARCUS_OCEAN_MAX_HEROES);
     }
   }
 }

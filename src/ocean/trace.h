@@ -53,6 +53,10 @@ struct TraceParams {
   int max_interactions = 5;  // thesis §5.3
   uint64_t seed = 1;
   bool store = false;         // keep the scattered photons (photon map)
+  // Wavelengths each stored photon carries (hero-wavelength sampling, trace.cl): the
+  // largest divisor of the grid's sample count not above this, 1..ARCUS_OCEAN_MAX_HEROES
+  // (1: the thesis' one wavelength per photon).
+  int wavelengths_per_photon = ARCUS_OCEAN_MAX_HEROES;
   std::vector<double> depths; // irradiance tallies at these depths [m] (≥ 0)
   double layer = 0.1;         // E_0's track-length layer [m]
   // Inelastic code: compiled when the water has inelastic events; `force_inelastic`
@@ -78,11 +82,17 @@ struct Irradiance {  // per depth and grid sample, per nm: [j·count + k]
   std::vector<double> ed, eu, e0;
 };
 
+// Photons stored at scattering events: per event a position, the direction it
+// arrived along and the event; per event ARCUS_OCEAN_MAX_HEROES powers and wavelengths
+// (the wavelengths it carried; power 0 past them).
 struct StoredPhotons {
   std::vector<double> positions, directions, powers, wavelengths;
   std::vector<int32_t> events;
-  size_t size() const { return powers.size(); }
+  size_t size() const { return events.size(); }
 };
+
+// The wavelengths a stored photon carries on this grid (TraceParams::wavelengths_per_photon).
+int carried_wavelengths(int requested, int grid_count);
 
 struct TraceJob : arcus_job_s {
   explicit TraceJob(arcus_context_t* ctx, const char* kind = "ocean trace") : arcus_job_s(ctx, kind) {}

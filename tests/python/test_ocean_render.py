@@ -129,20 +129,55 @@ def test_the_sun_lights_a_disc_of_the_surface(ctx):
 
 
 @pytest.mark.heavy
-def test_the_two_estimates_see_the_same_multiple_scattering(tmp_path, ctx):
+def test_the_two_estimates_see_the_same_multiple_scattering(ctx):
     """The per-step k-nearest estimate and the beam estimate gather the same photons'
     density along the same rays: with the multiple scattering alone, their images agree
-    to the estimates' noise and bias (k = 100, 3e5 photons: a few per cent here)."""
-    doc = {"name": "ms", "water": {"preset": "mediterranean"}, "grid": {"first_nm": 450, "last_nm": 650, "step_nm": 50},
-           "lights": [{"type": "point", "position": [3, 0, -10], "spectrum": 1.0}],
-           "photons": {"count": 300000, "max_interactions": 5, "seed": 2},
-           "view": view(width=8, height=6, steps=100, distance=8.0, k=100, single=False)}
-    path = write_scene(tmp_path, doc)
-    step = ocean.render(path, estimator="per_step", context=ctx)
-    beam = ocean.render(path, estimator="beam", context=ctx)
-    assert "OCEAN_BEAM" in beam.features and "OCEAN_BEAM" not in step.features
-    s, bm = step.spectral.sum(axis=(0, 1)), beam.spectral.sum(axis=(0, 1))
-    np.testing.assert_allclose(bm, s, rtol=0.05)
+    to the estimates' noise and bias.  k = 100 of 3e5 photons on 8 × 6 pixels, summed
+    over four seeds (one seed's colour bins differ by up to 13 %: the beam's radii come
+    from each photon's 32 nearest, render.cl); measured within 2.4 %, bound 5 %."""
+    step, beam = 0.0, 0.0
+    for seed in (2, 3, 4, 5):
+        doc = {"name": "ms", "water": {"preset": "mediterranean"},
+               "grid": {"first_nm": 450, "last_nm": 650, "step_nm": 50},
+               "lights": [{"type": "point", "position": [3, 0, -10], "spectrum": 1.0}],
+               "photons": {"count": 300000, "max_interactions": 5, "seed": seed},
+               "view": view(width=8, height=6, steps=100, distance=8.0, k=100, single=False)}
+        s = ocean.render(doc, estimator="per_step", context=ctx)
+        b = ocean.render(doc, estimator="beam", context=ctx)
+        assert "OCEAN_BEAM" in b.features and "OCEAN_BEAM" not in s.features
+        step, beam = step + s.spectral.sum(axis=(0, 1)), beam + b.spectral.sum(axis=(0, 1))
+    np.testing.assert_allclose(beam, step, rtol=0.05)
+
+
+def stride_scene(stride, single=True, multiple=True):
+    v = view(width=64, height=48, steps=60, distance=8.0, k=125, single=single, multiple=multiple, vfov=25)
+    v["march"]["estimate_stride"] = stride
+    return {"name": "stride", "water": {"preset": "mediterranean"},
+            "grid": {"first_nm": 400, "last_nm": 700, "step_nm": 20},
+            "lights": [{"type": "point", "position": [3, 0, -10], "spectrum": 1.0}],
+            "photons": {"count": 200000, "max_interactions": 5, "seed": 3}, "view": v}
+
+
+def test_determinism_the_lights_and_the_strided_photon_estimate_add_up(ctx):
+    """With estimate_stride 3 the lights' single scattering is marched at every pixel
+    and the photon estimate at every third, added bilinearly: the image is, to the
+    last bit, the single-scattering image plus the strided multiple-scattering one."""
+    both = ocean.render(stride_scene(3), context=ctx).spectral
+    lights = ocean.render(stride_scene(3, multiple=False), context=ctx).spectral
+    photons = ocean.render(stride_scene(3, single=False), context=ctx).spectral
+    np.testing.assert_array_equal(both, lights + photons)
+
+
+def test_the_photon_estimate_at_every_other_pixel_keeps_the_image(ctx):
+    """The photon estimate is smooth over its photons' radii, which span many pixels, so
+    sampling it at every other pixel and interpolating changes little.  Here the radii
+    are the default scenes' (k/N = 1250/2 M) and the samples 1.04° apart, twice the
+    default's spacing (512 pixels over 50°, every fourth): the multiple scattering's
+    relative RMS difference against the estimate at every pixel, same photons,
+    measured 1.65 %, while two seeds differ by 22 %.  Bound 3 %."""
+    every = ocean.render(stride_scene(1, single=False), context=ctx).spectral.sum(axis=2)
+    other = ocean.render(stride_scene(2, single=False), context=ctx).spectral.sum(axis=2)
+    assert np.sqrt(np.mean((other - every) ** 2) / np.mean(every ** 2)) < 0.03
 
 
 def test_same_seed_same_image(tmp_path, ctx):
@@ -197,8 +232,18 @@ def test_bad_views_are_refused(tmp_path, ctx):
             "lights": [{"type": "point", "position": [2, 0, -10], "spectrum": 1.0}]}
     with pytest.raises(arcus.ArgumentError, match="view"):
         ocean.render(write_scene(tmp_path, base), context=ctx)
-    doc = dict(base, view=view(k=5000))
-    with pytest.raises(arcus.ArgumentError, match="k"):
+    doc = dict(base, view=view(k=5000, estimator="per_step"))
+    with pytest.raises(arcus.ArgumentError, match=r"march.k: must be in 1..512 \(per-step estimate\)"):
+        ocean.render(write_scene(tmp_path, doc), context=ctx)
+    doc = dict(base, view=view(k=70000))
+    with pytest.raises(arcus.ArgumentError, match=r"march.k"):
+        ocean.render(write_scene(tmp_path, doc), context=ctx)
+    doc = dict(base, view=view())
+    doc["view"]["march"]["estimate_stride"] = 0
+    with pytest.raises(arcus.ArgumentError, match="estimate_stride"):
+        ocean.render(write_scene(tmp_path, doc), context=ctx)
+    doc = dict(base, view=view(), photons={"count": 1000, "wavelengths_per_photon": 5})
+    with pytest.raises(arcus.ArgumentError, match="wavelengths_per_photon: must be in 1..4"):
         ocean.render(write_scene(tmp_path, doc), context=ctx)
     doc = dict(base, view=view(look_at=(0, 0, -10)))
     with pytest.raises(arcus.ArgumentError, match="look_at"):
@@ -217,16 +262,20 @@ def test_bad_views_are_refused(tmp_path, ctx):
 
 
 @pytest.mark.heavy
-def test_the_default_waters_noise_stays_where_it_was_measured(ctx, repo):
-    """Issue 22 asks for default water images within 5 % RMS of a 16× reference (sRGB);
-    they are not there yet (docs/benchmarks.md, "Underwater light").  This keeps the
-    level measured so that it cannot grow unseen: `north_sea` at its defaults (400 000
-    photons, k = 250, beam estimate) rendered at 128 × 96 with seeds 1 and 2, the sRGB
-    (after the scene's exposure) RMS of their difference over the image's RMS, over √2
-    for one image's noise: measured 14.7 % (seeds 1-3 pairwise: 14.7-14.9 %); luma (Rec.
-    709's weights of the sRGB values) 7.9 %.  Bounds: 17 % and 10 %."""
+def test_the_default_water_images_noise_is_within_five_percent(ctx, repo):
+    """Issue 22: default water images within 5 % RMS (sRGB) of a 16× reference.  The
+    default (2 M photons of four wavelengths, each photon's radius holding 1250, the
+    photon estimate at every fourth pixel: scenes/ocean/*.json) is rendered with seeds 1
+    and 2; the RMS of their difference over the image's RMS, over √2, is one image's
+    noise, and a 16× reference of the same radii would differ from it by √(1 + 1/16) of
+    that.  To keep it cheap the estimate is made at every pixel of a 128 × 96 image:
+    the very rays the full-size default makes it on.  `north_sea`, the noisiest of the
+    five (docs/benchmarks.md: 1.3-4.5 %), measured 4.48 % in sRGB and 3.07 % in luma
+    (Rec. 709 weights of the sRGB values); the thesis' settings, 14.7 % and 8.2 %.
+    Bounds: the issue's 5 % (its reference adds 3 %: 4.62 %), and 3.5 % in luma."""
     doc = json.loads((repo / "scenes" / "ocean" / "north_sea.json").read_text())
     doc["view"]["camera"].update(width=128, height=96)
+    doc["view"]["march"]["estimate_stride"] = 1
     exposure = doc["view"]["march"]["exposure"]
     images = []
     for seed in (1, 2):
@@ -238,4 +287,18 @@ def test_the_default_waters_noise_stays_where_it_was_measured(ctx, repo):
     def noise(x, y):
         return float(np.sqrt(np.mean((x - y) ** 2) / np.mean(((x + y) / 2) ** 2)) / math.sqrt(2))
     luma = [i @ np.array([0.2126, 0.7152, 0.0722]) for i in images]
-    assert noise(a, b) < 0.17 and noise(*luma) < 0.10, (noise(a, b), noise(*luma))
+    assert noise(a, b) * math.sqrt(1 + 1 / 16) < 0.05 and noise(*luma) < 0.035, (noise(a, b), noise(*luma))
+
+
+def test_the_thesis_settings_are_a_named_preset(ctx, repo):
+    """`thesis=True` (`arcus render --thesis`) puts the thesis' image settings in place
+    of the bundled scenes': 400 000 photons of one wavelength, k = 250, every pixel."""
+    doc = json.loads((repo / "scenes" / "ocean" / "north_sea.json").read_text())
+    ocean.use_thesis_settings(doc)
+    assert doc["photons"]["count"] == 400_000 and doc["photons"]["wavelengths_per_photon"] == 1
+    assert doc["view"]["march"]["k"] == 250 and doc["view"]["march"]["estimate_stride"] == 1
+    assert doc["view"]["march"]["estimator"] == "beam"  # the scene's own
+    doc["view"]["camera"].update(width=8, height=6)
+    doc["photons"]["count"] = 20_000
+    small = ocean.render(doc, context=ctx)
+    assert small.image.shape == (6, 8, 3) and np.all(np.isfinite(small.image))

@@ -87,12 +87,19 @@ TEST(OceanScene, EveryBundledSceneLoads) {
     ASSERT_NO_THROW(d = read_ocean_scene(f.string()));
     EXPECT_FALSE(d.description.empty());
     EXPECT_FALSE(d.lights.empty());
-    if (d.trace.depths.empty()) {
-      // The images (thesis §5.3): 400 000 photons, 250 per estimate, 200 steps.
-      ASSERT_TRUE(d.has_camera);
+    if (f.filename() == "fig5_9.json") {  // Fig. 5.9's tallies: the thesis' trace, settings and all
       EXPECT_EQ(d.trace.photons, 400000u);
-      EXPECT_EQ(d.march.k, 250);
+      EXPECT_EQ(d.trace.max_interactions, 10);
+    } else if (d.trace.depths.empty()) {
+      // The images: 2 M photons of four wavelengths, each photon's radius holding
+      // 1250 (the radius of the thesis' 250 of 400 000, §5.3), 200 steps, the photon
+      // estimate at every fourth pixel of 512 (every other of 256).
+      ASSERT_TRUE(d.has_camera);
+      EXPECT_EQ(d.trace.photons, 2000000u);
+      EXPECT_EQ(d.trace.wavelengths_per_photon, 4);
+      EXPECT_EQ(d.march.k, 1250);
       EXPECT_EQ(d.march.steps, 200);
+      EXPECT_EQ(d.march.estimate_stride * 128, int(d.camera.width));
     } else {
       EXPECT_TRUE(d.medium.surface);
       EXPECT_EQ(d.trace.max_interactions, 64);  // profiles follow every interaction
@@ -114,9 +121,9 @@ TEST(OceanScene, TheFig510ScenesShareOneViewAndLamp) {
     EXPECT_EQ(d.camera.height, 384u);
     EXPECT_EQ(d.trace.max_interactions, 5);
     EXPECT_EQ(d.march.estimator, MarchParams::beam);  // scenes/README.md: the fast estimate
-    EXPECT_EQ(d.march.k, 250);                       // the thesis' image settings (§5.3)
+    EXPECT_EQ(d.march.k, 1250);                      // the radius of the thesis' settings (§5.3)
     EXPECT_EQ(d.march.steps, 200);
-    EXPECT_EQ(d.trace.photons, 400000u);
+    EXPECT_EQ(d.trace.photons, 2000000u);
     EXPECT_FALSE(d.medium.surface);
     EXPECT_TRUE(std::isinf(d.medium.bottom_depth));
   }
@@ -184,6 +191,8 @@ TEST_F(OceanSceneErrors, DefaultsAndIops) {
   EXPECT_EQ(d.medium.box_hi[2], 0);
   EXPECT_EQ(d.trace.photons, 400000u);  // defaults
   EXPECT_EQ(d.trace.max_interactions, 5);
+  EXPECT_EQ(d.trace.wavelengths_per_photon, 4);
+  EXPECT_EQ(d.march.estimate_stride, 1);
   EXPECT_EQ(d.grid.first_nm, 400);
   const OceanSceneDesc e = read_ocean_scene(write(scene_text()));
   EXPECT_EQ(e.grid.count, 81);  // 380–780 nm at 5
@@ -241,7 +250,7 @@ TEST(OceanScene, LoadsThroughTheCApiAsAnOceanScene) {
   ASSERT_EQ(arcus_scene_get_document(scene, &document), ARCUS_SUCCESS);
   EXPECT_NE(std::string(document).find("\"preset\": \"atlantic\""), std::string::npos);
   auto* s = arcus::ocean::ocean_scene(scene);
-  EXPECT_EQ(s->desc.march.k, 250);
+  EXPECT_EQ(s->desc.march.k, 1250);
   EXPECT_EQ(arcus_scene_release(scene), ARCUS_SUCCESS);
 
   TempDir dir;

@@ -398,10 +398,10 @@ TEST(PhotonMap, BadInputIsAnInvalidArgument) {
 
   auto build = [&ctx](Photons bad) { return [&ctx, bad] { PhotonMap m(ctx, bad); }; };
   Photons bad = p;
-  bad.channels = 5;
-  expect_invalid(build(bad), "channels = 5 is outside 1..4");
+  bad.channels = 10;
+  expect_invalid(build(bad), "channels = 10 is outside 1..9");
   bad.channels = 0;
-  expect_invalid(build(bad), "channels = 0 is outside 1..4");
+  expect_invalid(build(bad), "channels = 0 is outside 1..9");
   bad = p;
   bad.positions[3 * 7 + 1] = NAN;
   expect_invalid(build(bad), "photon 7: position");

@@ -186,6 +186,7 @@ class OceanTraceParamsStruct(ctypes.Structure):
         ("seed", c_uint64),
         ("store_photons", c_int32),
         ("force_inelastic", c_int32),
+        ("wavelengths_per_photon", c_uint32),
         ("progress", PROGRESS_CALLBACK),
         ("progress_user", c_void_p),
     ]
@@ -206,6 +207,7 @@ class OceanMarchStruct(ctypes.Structure):
         ("single_scattering", c_int32),
         ("multiple_scattering", c_int32),
         ("exposure", c_double),
+        ("estimate_stride", c_uint32),
     ]
 
 

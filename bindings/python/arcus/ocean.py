@@ -303,13 +303,16 @@ class TraceResult:
 
 def trace_photons(water, light, photons=400_000, max_interactions=5, seed=1, *, grid=(380.0, 780.0, 5.0),
                   store=False, depths=None, layer=0.1, surface=False, n_water=1.34, bottom_depth=math.inf,
-                  bottom_albedo=0.0, box=None, force_inelastic=False, progress=None, context=None):
+                  bottom_albedo=0.0, box=None, force_inelastic=False, wavelengths_per_photon=4, progress=None,
+                  context=None):
     """Traces ``photons`` spectral photons from ``light`` (a :class:`Light` or a list)
     through ``water`` (thesis §4.2): a :class:`TraceResult`.
 
     ``box``: ((x0, y0, z0), (x1, y1, z1)) bounds photons leave through; ``surface``: a
     flat air–water surface at z = 0 with water below; ``depths``: irradiance tallies of
-    a plane-parallel column (needs the surface, or a box whose top is z = 0)."""
+    a plane-parallel column (needs the surface, or a box whose top is z = 0);
+    ``wavelengths_per_photon``: 1..4, what each stored photon carries (hero wavelengths:
+    the largest divisor of the grid's sample count not above it; 1: the thesis' one)."""
     if not isinstance(water, Water):
         raise ArgumentError("water: an arcus.ocean.Water, got %r" % (water,))
     _check_progress(progress)
@@ -338,6 +341,9 @@ def trace_photons(water, light, photons=400_000, max_interactions=5, seed=1, *, 
     _lib.check(lib.arcus_ocean_trace_params_init(byref(params)))
     params.photons, params.max_interactions, params.seed = int(photons), int(max_interactions), int(seed)
     params.store_photons, params.force_inelastic = int(bool(store)), int(bool(force_inelastic))
+    if not (isinstance(wavelengths_per_photon, int) and 1 <= wavelengths_per_photon <= 4):
+        raise ArgumentError("wavelengths_per_photon: must be an integer in 1..4, got %r" % (wavelengths_per_photon,))
+    params.wavelengths_per_photon = wavelengths_per_photon
 
     with _owned_context(context) as ctx:
         handle = water._create(ctx)
@@ -462,21 +468,38 @@ def _read_image(ctx, job, exr, png, spectral_bands):
                       features=_lib.feature_names(features.value), tallies=tallies)
 
 
-def render(scene, *, photons=None, k=None, steps=None, estimator=None, exr=None, png=None, spectral=False,
-           progress=None, context=None):
+# The thesis' image settings (§5.3): 400 000 photons of one wavelength each, 250 per
+# estimate, the estimate at every pixel.  The bundled scenes spend 2 M photons of four
+# wavelengths at k = 1250 (the same radius) with the estimate at every fourth pixel:
+# a fifth of the noise in half the time (docs/benchmarks.md, "Underwater light").
+THESIS_SETTINGS = {"photons": {"count": 400_000, "wavelengths_per_photon": 1},
+                   "march": {"k": 250, "estimate_stride": 1}}
+
+
+def use_thesis_settings(doc):
+    """Puts :data:`THESIS_SETTINGS` into an ocean scene's dict, in place."""
+    doc.setdefault("photons", {}).update(THESIS_SETTINGS["photons"])
+    doc.setdefault("view", {}).setdefault("march", {}).update(THESIS_SETTINGS["march"])
+
+
+def render(scene, *, photons=None, k=None, steps=None, estimator=None, thesis=False, exr=None, png=None,
+           spectral=False, progress=None, context=None):
     """Renders an ocean scene — a file (scenes/README.md, "Ocean scenes"; read and
     checked by the library) or a dict of the same schema — its "view", and returns an
     :class:`OceanImage`; writes ``exr`` (linear; with ``spectral``, a channel per
-    wavelength) and ``png`` (sRGB) if given.  ``photons``, ``k``, ``steps``,
-    ``estimator`` ("per_step" or "beam") override the scene's."""
+    wavelength) and ``png`` (sRGB) if given.  ``thesis``: the thesis' settings
+    (:data:`THESIS_SETTINGS`) in place of the scene's; then ``photons``, ``k``,
+    ``steps``, ``estimator`` ("per_step" or "beam") override."""
     overrides = dict(photons=photons, k=k, steps=steps, estimator=estimator)
-    if isinstance(scene, dict) or any(v is not None for v in overrides.values()):
+    if isinstance(scene, dict) or thesis or any(v is not None for v in overrides.values()):
         # The library reads scene files: a dict, or a file with overrides, goes through
         # a copy (ocean scenes name no other files, so it may live anywhere).
         if isinstance(scene, dict):
             doc = json.loads(json.dumps(scene))
         else:
             doc = _scene_file.read(scene, ("ocean",))[1]  # read and checked by the library
+        if thesis:
+            use_thesis_settings(doc)
         if photons is not None:
             doc.setdefault("photons", {})["count"] = int(photons)
         march = doc.setdefault("view", {}).setdefault("march", {})

@@ -99,7 +99,7 @@ def steps(full):
     for w in WATERS:
         s.append(Step("Underwater light", "%s water" % w.replace("_", " ").title(), description("ocean/" + w),
                       ["render", "ocean/" + w, "-o", "{out}/%s.png" % w, "--quiet"]
-                      + ([] if full else ["--width", "256", "--height", "192", "--photons", "200000"]), "ocean",
+                      + ([] if full else ["--width", "256", "--height", "192", "--photons", "1000000"]), "ocean",
                       docs_image="ocean/mediterranean.png" if w == "mediterranean" else ""))
         # beside it the same water's vertical profile under the sun and a sky, and its reference
         s.append(Step("Underwater light", "%s water under the sun: depth profiles" % w.replace("_", " ").title(),

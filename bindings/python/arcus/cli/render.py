@@ -38,6 +38,8 @@ def add(sub):
     p.add_argument("--height", type=int, help="image height in pixels (default: the scene's)")
     p.add_argument("--samples", type=int, help="rainbow skies: points on the sun's disc; ocean scenes: photons per "
                    "radiance estimate")
+    p.add_argument("--thesis", action="store_const", const=True, help="ocean scenes: the thesis' settings (400 000 "
+                   "photons of one wavelength, k = 250, the estimate at every pixel) before --photons, --samples")
     p.add_argument("--photons", type=int, help="ocean scenes: photons traced (default: the scene's; --quick: a "
                    "tenth)")
     p.add_argument("--seed", type=int, help="ocean scenes: the photons' seed; rainbow skies: the ice crystals' "
@@ -151,6 +153,7 @@ def render_curved(ctx, path, doc, args, exr, png, bar):
     _refuse(args, "samples", "render", "they trace one ray per pixel")
     _refuse(args, "seed", "render", "they have no random numbers but their photons' fixed sequence")
     _refuse(args, "photons", "render", "a render scene's photon map is set in its file (\"photons\")")
+    _refuse(args, "thesis", "render", "it sets an ocean scene's photons")
     if args.profile and doc.get("field", {}).get("type") != "atmosphere":
         raise ArgumentError("--profile draws a render scene's rays through its air: %s's field is %r, not an "
                             "atmosphere" % (path, doc.get("field", {}).get("type")))
@@ -169,6 +172,8 @@ def render_ocean(ctx, path, doc, args, exr, png, bar):
     camera = doc["view"]["camera"]
     camera["width"] = args.width or _scaled(camera["width"], args.quick)
     camera["height"] = args.height or _scaled(camera["height"], args.quick)
+    if args.thesis:
+        ocean.use_thesis_settings(doc)
     photons = doc.setdefault("photons", {})
     if args.quick:
         photons["count"] = max(10000, photons.get("count", 400000) // 10)
@@ -199,6 +204,7 @@ def quick_rainbow(doc):
 
 def render_rainbow(ctx, path, doc, args, exr, png, bar):
     _refuse(args, "photons", "rainbow", "a sky is marched, not photon-mapped")
+    _refuse(args, "thesis", "rainbow", "it sets an ocean scene's photons")
     img = doc.get("image", {})
     width = args.width or _scaled(img.get("width", 800), args.quick)
     height = args.height or _scaled(img.get("height", 600), args.quick)
