@@ -59,7 +59,7 @@ def double_bow(exposure=0.0, raindrops=False, image_sky=False):
     θ axis).  image_sky: a panorama file as the sky."""
     scene = json.loads((REPO / "scenes" / "rainbow" / "double_bow.json").read_text())
     scene["image"].update(width=160, height=120, exposure=exposure)
-    scene["tables"].update(wavelengths={"linspace": [380, 700, 8]}, grid=200)
+    scene["tables"].update(wavelengths={"linspace": [380, 700, 8]}, grid=200, band_samples=1)
     if raindrops:
         scene["rain"]["populations"] = [{"shape": "raindrop", "diameter": 2e-3, "density": 300}]
         scene["tables"].update(grid=100, phi_step_deg=30, theta={"range": [120, 180, 0.5]})
