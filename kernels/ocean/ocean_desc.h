@@ -164,13 +164,20 @@ ARCUS_DECLARE_OCEAN_DESC(arcus_ocean_desc, arcus_ocean_phases, double, int32_t, 
  * as many rows of G[l][d][m] = Σ_i I_l(λ_i) exp(−σ_t(λ_i) d) μ_j(λ_i) h_j(λ_m | λ_i)
  * (λ_i/λ_m) Δλ / (4π) (eq. 4.5), d = g·g_step.  For the sun (a directional light above
  * the surface; its direction in `lights` is the refracted beam's in the water) I is
- * its irradiance normal to the beam just below the surface and d the slant path. */
+ * its irradiance normal to the beam just below the surface and d the slant path.
+ * The sky above the surface (src/ocean/render.cpp, sky_tables): `sky` holds its
+ * radiance L_s (n reals), n²T through the surface looking up at each of sky_cosines
+ * view cosines v = −1 … 1 (0 outside Snell's window), then per depth row d = r ·
+ * sky_d_step and view cosine the light its first elastic scattering sends toward the
+ * camera per metre (sky_rows × sky_cosines × n), then per row the inelastic (sky_rows ×
+ * n). */
 #define ARCUS_DECLARE_OCEAN_RENDER_DESC(NAME, PHASES, R, I)                                       \
   typedef struct NAME {                                                                           \
     R eye[3], forward[3], right[3], up[3]; /* right/up scaled to the image plane at 1 */           \
     R step;                    /* Δt [m]                                                     */   \
     R band;                    /* Δλ of a grid sample [nm] (1 for one sample)                */   \
     R g_step;                  /* distance between light-table rows [m]                      */   \
+    R sky_d_step;              /* depth between sky-table rows [m]                           */   \
     PHASES phases;                                                                                \
     I width, height, count, steps, k, light_count, g_samples;                                     \
     I first_pixel, end_pixel;  /* this launch's pixels                                       */   \
@@ -178,6 +185,7 @@ ARCUS_DECLARE_OCEAN_DESC(arcus_ocean_desc, arcus_ocean_phases, double, int32_t, 
     I multiple;                /* 1: multiple scattering from the photon map                 */   \
     I stride;                  /* a pixel here is stride × stride of the image's              */   \
     I image_width, image_height; /* the image's pixels (width, height: this pass's)          */   \
+    I sky_rows, sky_cosines;   /* the sky tables (0 rows: no sky)                            */   \
     I surface;                 /* 1: the flat sea surface at z = 0 ends every ray reaching it */   \
   } NAME
 
@@ -200,6 +208,7 @@ ARCUS_DECLARE_OCEAN_RENDER_DESC(arcus_ocean_render_desc, arcus_ocean_phases, dou
   X(__global const REAL*, optics)           \
   X(__global const REAL*, lights)           \
   X(__global const REAL*, light_tables)     \
+  X(__global const REAL*, sky)              \
   X(__global const bvh_node*, nodes)        \
   X(__global const REAL*, photons)          \
   X(const photon_map_desc, map)             \

@@ -92,6 +92,14 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
     out[m] = RC(0);
     T[m] = optics[2 * n + m]; /* exp(−σ_t Δt/2): the first midpoint */
   }
+  /* The sky tables' columns about this ray's vertical cosine (sky_c0, weight sky_ct of
+   * the next). */
+  __global const REAL* sky_window = sky + n;
+  __global const REAL* sky_elastic = sky_window + rd.sky_cosines;
+  __global const REAL* sky_inelastic = sky_elastic + (size_t)rd.sky_rows * (size_t)rd.sky_cosines * (size_t)n;
+  const REAL sky_cx = clamp((dir.z + RC(1)) * RC(0.5) * (REAL)(rd.sky_cosines - 1), RC(0), (REAL)(rd.sky_cosines - 1));
+  const int sky_c0 = min((int)sky_cx, max(rd.sky_cosines - 2, 0));
+  const REAL sky_ct = sky_cx - (REAL)sky_c0;
 #ifdef ARCUS_USE_OCEAN_PHOTON_MAP
 #ifndef ARCUS_USE_OCEAN_BEAM
   REAL d2[ARCUS_PHOTON_MAX_K];
@@ -108,6 +116,7 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
     if (rd.single) {
       for (int l = 0; l < rd.light_count; ++l) {
         __global const REAL* L = lights + (size_t)l * ARCUS_OCEAN_LIGHT_REALS;
+        if ((int)L[0] == ARCUS_OCEAN_EMIT_SKY) continue; /* its own tables, below */
         const int sun = (int)L[0] == ARCUS_OCEAN_EMIT_DIRECTIONAL;
         REAL3 wi; /* the light's propagation at x */
         REAL dist, spread;
@@ -143,6 +152,24 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
         }
       }
     }
+    /* ---- the sky's first scattering: its tables at this depth and the ray's vertical
+     * cosine, bilinear (constant along the ray in the cosine) */
+    if (rd.single && rd.sky_rows > 0) {
+      const REAL gx = fmin(-x.z / rd.sky_d_step, (REAL)(rd.sky_rows - 1));
+      const int g0 = min((int)gx, rd.sky_rows - 2);
+      const REAL gt = gx - (REAL)g0;
+      __global const REAL* E0 = sky_elastic + ((size_t)g0 * (size_t)rd.sky_cosines + (size_t)sky_c0) * (size_t)n;
+      __global const REAL* E1 = E0 + (size_t)rd.sky_cosines * (size_t)n;
+      for (int m = 0; m < n; ++m) {
+        const REAL a = E0[m] + sky_ct * (E0[n + m] - E0[m]), b = E1[m] + sky_ct * (E1[n + m] - E1[m]);
+        REAL in = a + gt * (b - a);
+#ifdef ARCUS_USE_OCEAN_INELASTIC
+        __global const REAL* G = sky_inelastic + (size_t)g0 * (size_t)n;
+        in += G[m] + gt * (G[n + m] - G[m]);
+#endif
+        out[m] += T[m] * in * rd.step;
+      }
+    }
 #ifdef ARCUS_USE_OCEAN_PHOTON_MAP
 #ifndef ARCUS_USE_OCEAN_BEAM
     /* ---- multiple scattering: the k nearest photons (eq. 4.6) */
@@ -170,6 +197,15 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
 #endif
 #endif
     for (int m = 0; m < n; ++m) T[m] *= step_factor[m];
+  }
+
+  /* ---- Snell's window: a ray reaching the surface within the march sees the sky
+   * through it, n²T L_s, dimmed along its whole path (outside the window the surface
+   * reflects the water below, which is left out) */
+  if (rd.single && rd.sky_rows > 0 && dir.z > RC(0) && -eye.z / dir.z <= rd.step * (REAL)rd.steps) {
+    const REAL through = sky_window[sky_c0] + sky_ct * (sky_window[sky_c0 + 1] - sky_window[sky_c0]);
+    const REAL to_surface = -eye.z / dir.z;
+    for (int m = 0; m < n; ++m) out[m] += through * sky[m] * exp(-sigma_t[m] * to_surface);
   }
 
 #ifdef ARCUS_USE_OCEAN_BEAM

@@ -96,11 +96,15 @@ def steps(full):
                   + description("mirage"),
                   ["trace", "mirage", "--out", "{out}", "--quiet"], "mirage",
                   docs_image="mirage/paths.png", pictures=["paths.png"]))
+    quick_water = [] if full else ["--width", "256", "--height", "192", "--photons", "1000000"]
     for w in WATERS:
         s.append(Step("Underwater light", "%s water" % w.replace("_", " ").title(), description("ocean/" + w),
-                      ["render", "ocean/" + w, "-o", "{out}/%s.png" % w, "--quiet"]
-                      + ([] if full else ["--width", "256", "--height", "192", "--photons", "1000000"]), "ocean",
+                      ["render", "ocean/" + w, "-o", "{out}/%s.png" % w, "--quiet"] + quick_water, "ocean",
                       docs_image="ocean/mediterranean.png" if w == "mediterranean" else ""))
+        s.append(Step("Underwater light", "%s water in daylight" % w.replace("_", " ").title(),
+                      description("ocean/sunlit/" + w),
+                      ["render", "ocean/sunlit/" + w, "-o", "{out}/sunlit_%s.png" % w, "--quiet"] + quick_water,
+                      "ocean"))
         # beside it the same water's vertical profile under the sun and a sky, and its reference
         s.append(Step("Underwater light", "%s water under the sun: depth profiles" % w.replace("_", " ").title(),
                       description("ocean/profiles/%s_sun" % w) + " Photons (markers) beside discrete ordinates "
