@@ -12,6 +12,7 @@
 #include "core/features.h"
 #include "core/launch.h"
 #include "image/image_io.h"
+#include "ocean/sky_light.h"
 #include "photon/photon_map.h"
 #include "scene/common_keys.h"  // the pinhole camera's checks, shared
 #include "spectral/cie.h"
@@ -42,8 +43,6 @@ constexpr int kMaxBeamK = 65536;
 // against 9.4 % in sRGB) for 2.4 s of map time against 6.3 s; at 2 M photons and
 // k = 1250, 64 gain nothing (4.49 % against 4.48 %).
 constexpr int kRadiusK = 32;
-// The sky tables' depth rows and view cosines (render.cl; bilinear between).
-constexpr int kSkyRows = 256, kSkyCosines = 129;
 // The trace's share of the progress bar.
 constexpr double kTraceShare = 0.3;
 
@@ -166,121 +165,6 @@ std::vector<double> light_tables(const WaterTables& w, const std::vector<Light>&
       }
     }
   return out;
-}
-
-// The sky's light in an image (kernels/ocean/ocean_desc.h, "sky tables"): a uniform sky
-// of radiance L_s = E/π above the flat surface (E: the sky lights' plane irradiance)
-// comes through it as n² T(μ) L_s within Snell's cone (μ_w ≥ μ_c, the n² law of radiance
-// and the Fresnel transmittance), dimmed along the slant path d/μ_w to depth d.  Its
-// first scattering toward a view whose direction has vertical cosine v, at depth d:
-//   elastic   Σ_s σ_s(λ) ∫_cone n² T L_s e^(−σ_t d/μ) p_s(cos Θ) dω,
-//   inelastic Σ_i M[λ][λ_i] E_0(d, λ_i), E_0 the sky's scalar irradiance there,
-// with the azimuth integrated once per (v, μ) (the phase functions do not depend on λ).
-// Gauss–Legendre nodes and weights of order n on [a, b] (Newton on P_n from the
-// Chebyshev guesses).
-void gauss_legendre(int n, double a, double b, double* x, double* w) {
-  for (int i = 0; i < n; ++i) {
-    double z = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 1;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1, p1 = z;  // P_0, P_1, then up to P_n by the recurrence
-      for (int k = 2; k <= n; ++k) {
-        const double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (z * p1 - p0) / (z * z - 1);
-      const double step = p1 / dp;
-      z -= step;
-      if (std::abs(step) < 1e-15) break;
-    }
-    x[i] = 0.5 * (a + b) + 0.5 * (b - a) * z;
-    w[i] = (b - a) / ((1 - z * z) * dp * dp);
-  }
-}
-
-struct SkyTables {
-  int rows = 0, cosines = 0;
-  double d_step = 1;
-  std::vector<double> data;  // L_s (n), window n²T (cosines), elastic (rows × cosines × n), inelastic (rows × n)
-};
-
-SkyTables sky_tables(const WaterTables& w, const std::vector<Light>& lights, const Medium& medium,
-                     const std::vector<double>& st, const std::vector<double>& M, double d_max) {
-  SkyTables t;
-  const size_t n = w.grid.count;
-  std::vector<double> radiance(n, 0.0);  // L_s per sample [W/m²/sr/nm]
-  bool any = false;
-  for (const Light& L : lights)
-    if (L.kind == Light::sky) {
-      any = true;
-      for (size_t m = 0; m < n; ++m) radiance[m] += light_spectrum(L, w.grid.nm(int(m))) / kPi;
-    }
-  if (!any) return t;
-  const double nw = medium.n_water, mu_c = std::sqrt(std::max(0.0, 1 - 1 / (nw * nw)));
-  t.rows = kSkyRows;
-  t.cosines = kSkyCosines;
-  t.d_step = std::max(d_max, 1e-9) / (t.rows - 1);
-  // Gauss–Legendre in μ over [μ_c, 1] and a midpoint rule in the azimuth.
-  constexpr int kMu = 32, kPhi = 64;
-  std::vector<double> x(kMu), wq(kMu);
-  gauss_legendre(kMu, mu_c, 1.0, x.data(), wq.data());
-  std::vector<double> through(kMu);  // n² T(μ) times μ's quadrature weight
-  for (int k = 0; k < kMu; ++k) {
-    const double mu_a = std::sqrt(std::max(0.0, 1 - nw * nw * (1 - x[k] * x[k])));
-    through[k] = nw * nw * (1 - arcus_fresnel_reflectance(mu_a, 1.0, nw)) * wq[k];
-  }
-  // P[s][c][k] = ∫ p_s dφ between the sky's downward direction at μ_k and −view.
-  std::vector<double> P(size_t(kScattererCount) * t.cosines * kMu, 0.0);
-  for (int c = 0; c < t.cosines; ++c) {
-    const double v = -1 + 2.0 * c / (t.cosines - 1), sv = std::sqrt(std::max(0.0, 1 - v * v));
-    for (int k = 0; k < kMu; ++k) {
-      const double sk = std::sqrt(std::max(0.0, 1 - x[k] * x[k]));
-      for (int s = 0; s < kScattererCount; ++s) {
-        double sum = 0;
-        for (int j = 0; j < kPhi; ++j)
-          sum += phase_value(w.phase[s], x[k] * v - sk * sv * std::cos(2 * kPi * (j + 0.5) / kPhi));
-        P[(size_t(s) * t.cosines + c) * kMu + k] = sum * 2 * kPi / kPhi;
-      }
-    }
-  }
-  t.data.assign(n + t.cosines + size_t(t.rows) * t.cosines * n + size_t(t.rows) * n, 0.0);
-  for (size_t m = 0; m < n; ++m) t.data[m] = radiance[m];
-  for (int c = 0; c < t.cosines; ++c) {  // n² T(v) looking up at cos v through the surface
-    const double v = -1 + 2.0 * c / (t.cosines - 1);
-    if (v <= mu_c) continue;  // beyond Snell's window: total internal reflection
-    const double mu_a = std::sqrt(std::max(0.0, 1 - nw * nw * (1 - v * v)));
-    t.data[n + c] = nw * nw * (1 - arcus_fresnel_reflectance(mu_a, 1.0, nw));
-  }
-  double* elastic = &t.data[n + t.cosines];
-  double* inelastic = elastic + size_t(t.rows) * t.cosines * n;
-  std::vector<double> e0(n), att(kMu);
-  for (int r = 0; r < t.rows; ++r) {
-    const double d = r * t.d_step;
-    for (size_t m = 0; m < n; ++m) {
-      for (int k = 0; k < kMu; ++k) att[k] = through[k] * radiance[m] * std::exp(-st[m] * d / x[k]);
-      e0[m] = 0;
-      for (int k = 0; k < kMu; ++k) e0[m] += 2 * kPi * att[k];
-      for (int c = 0; c < t.cosines; ++c) {
-        double sum = 0;
-        for (int s = 0; s < kScattererCount; ++s) {
-          const double sigma = w.event[kScatterWater + s][m];
-          if (sigma <= 0) continue;
-          const double* Ps = &P[(size_t(s) * t.cosines + c) * kMu];
-          double acc = 0;
-          for (int k = 0; k < kMu; ++k) acc += Ps[k] * att[k];
-          sum += sigma * acc;
-        }
-        elastic[(size_t(r) * t.cosines + c) * n + m] = sum;
-      }
-    }
-    if (M.empty()) continue;
-    for (size_t m = 0; m < n; ++m) {
-      double sum = 0;
-      for (size_t i = 0; i < n; ++i) sum += M[m * n + i] * e0[i];
-      inelastic[size_t(r) * n + m] = sum;
-    }
-  }
-  return t;
 }
 
 // The stored photons as the map's photons: the event, then the powers and grid samples

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/quadrature.h"
 #include "rainbow/mie.h"
 
 namespace {
@@ -459,27 +460,11 @@ TEST(RainbowMie, ExtinctionEqualsScatteringWithoutAbsorption) {
   }
 }
 
-// Gauss–Legendre nodes and weights on [−1, 1] (Newton on P_k).
+// Gauss–Legendre nodes and weights on [−1, 1] (core/quadrature.h).
 void gauss_legendre(int k, std::vector<double>& nodes, std::vector<double>& weights) {
   nodes.resize(k);
   weights.resize(k);
-  for (int i = 0; i < k; ++i) {
-    double t = std::cos(kPi * (i + 0.75) / (k + 0.5)), dp = 0;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1, p1 = t;
-      for (int l = 2; l <= k; ++l) {
-        const double p2 = ((2.0 * l - 1) * t * p1 - (l - 1.0) * p0) / l;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = k * (t * p1 - p0) / (t * t - 1);
-      const double step = p1 / dp;
-      t -= step;
-      if (std::abs(step) < 1e-16) break;
-    }
-    nodes[i] = t;
-    weights[i] = 2 / ((1 - t * t) * dp * dp);
-  }
+  arcus::gauss_legendre(k, -1.0, 1.0, nodes.data(), weights.data());
 }
 
 TEST(RainbowMie, PhaseFunctionIntegratesToOne) {
