@@ -220,6 +220,11 @@ typedef struct arcus_ocean_march {
   double exposure;            /* PNG: linear sRGB × exposure: 1 */
   uint32_t estimate_stride;   /* the photon estimate at every n-th pixel across and down,
                                * bilinear between: 1 (every pixel, the thesis'), ≤ 64 */
+  double photon_tile;         /* > 0 [m]: lit only by the sun and the sky over a surface, the
+                               * scene is the same at every horizontal place: its photons
+                               * enter through one square tile this wide about the camera,
+                               * standing for every copy of it (beam estimate only).
+                               * 0 (default): through the lights' discs */
 } arcus_ocean_march;
 ARCUS_API arcus_status arcus_ocean_march_init(arcus_ocean_march* march);
 

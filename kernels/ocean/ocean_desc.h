@@ -120,6 +120,8 @@
     R bottom_albedo;                                                                              \
     R box_lo[3], box_hi[3];   /* photons leaving the box escape (may be infinite)            */   \
     R layer;                  /* depth tallies: thickness of the E_0 track-length layer [m]  */   \
+    R tile, tile_x, tile_y;   /* > 0: sun and sky enter through this periodic square tile [m] \
+                               * about (tile_x, tile_y), photons stored folded into it     */   \
     PHASES phases;            /* the scatterers' phase functions                             */   \
     U64 seed;                                                                                     \
     U64 first_photon, end_photon; /* this launch traces photons [first, end)              */      \
@@ -178,6 +180,9 @@ ARCUS_DECLARE_OCEAN_DESC(arcus_ocean_desc, arcus_ocean_phases, double, int32_t, 
     R band;                    /* Δλ of a grid sample [nm] (1 for one sample)                */   \
     R g_step;                  /* distance between light-table rows [m]                      */   \
     R sky_d_step;              /* depth between sky-table rows [m]                           */   \
+    R n_water;                 /* the water's refractive index (surface)                     */   \
+    R tile, tile_x, tile_y;    /* > 0: the photons' periodic tile [m] and its centre         */   \
+    R r_max;                   /* the largest photon radius (beam)                           */   \
     PHASES phases;                                                                                \
     I width, height, count, steps, k, light_count, g_samples;                                     \
     I first_pixel, end_pixel;  /* this launch's pixels                                       */   \
@@ -186,7 +191,8 @@ ARCUS_DECLARE_OCEAN_DESC(arcus_ocean_desc, arcus_ocean_phases, double, int32_t, 
     I stride;                  /* a pixel here is stride × stride of the image's              */   \
     I image_width, image_height; /* the image's pixels (width, height: this pass's)          */   \
     I sky_rows, sky_cosines;   /* the sky tables (0 rows: no sky)                            */   \
-    I surface;                 /* 1: the flat sea surface at z = 0 ends every ray reaching it */   \
+    I surface;                 /* 1: the flat sea surface at z = 0 reflects every ray
+                                * reaching it (Fresnel; beyond Snell's window, wholly)      */   \
   } NAME
 
 /* A stored photon in the map's power channels: its event, then per carried wavelength

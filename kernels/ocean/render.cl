@@ -16,6 +16,12 @@
  *     sphere of radius r_i (its own k-nearest distance) the ray passes through,
  *     Σ p Φ T(t_i) / (π r_i²), found in one BVH traversal per ray.
  *
+ * Under a flat surface a ray reaching it goes on reflected (Fresnel; wholly outside
+ * Snell's window): the reflected path is the straight ray's mirror image, so each
+ * point past the surface is mirrored.  With a periodic photon tile (rd.tile > 0) the
+ * map holds one tile's photons standing for their copies across the plane, and the
+ * beam estimate folds each ray into it (ocean_beam_leg).
+ *
  * One pixel per work-item, scalar (a ray's photons and BVH branches differ from its
  * neighbours').  The pixel's spectrum accumulates in `radiance` (count reals per
  * pixel) and its transmittance to the camera in `scratch`, both global, since a
@@ -66,6 +72,107 @@ ARCUS_INLINE REAL ocean_photon_phase(const ocean_phases* p, __global const REAL*
 
 #define OCEAN_MAP(c, slot) PHOTON(photons, map, c, slot)
 
+/* The beam estimate over one straight piece of a ray: the photons whose point nearest
+ * the line o + t w lies at t in [t0, t1) and whose sphere the line passes through, each
+ * dimmed by e^(−σ_t t) (t: the whole path's length to it) and by `weight`. */
+ARCUS_INLINE void ocean_beam_piece(__global const bvh_node* nodes, __global const REAL* photons, const photon_map_desc map,
+                                   __global const REAL* radii, const ocean_phases* phases, __global const REAL* optics,
+                                   REAL3 o, REAL3 w, REAL t0, REAL t1, REAL weight, __global REAL* out) {
+  __global const REAL* sigma_t = optics;
+  const REAL3 inv = (REAL3)(RC(1) / w.x, RC(1) / w.y, RC(1) / w.z);
+  int stack[ARCUS_BVH_MAX_DEPTH];
+  int top = 0, node = 0;
+  for (;;) {
+    __global const bvh_node* nd = nodes + node;
+    /* slab test of the node's box against the piece [t0, t1] */
+    const REAL3 lo = ((REAL3)(nd->lo[0], nd->lo[1], nd->lo[2]) - o) * inv;
+    const REAL3 hi = ((REAL3)(nd->hi[0], nd->hi[1], nd->hi[2]) - o) * inv;
+    const REAL3 a = fmin(lo, hi), c = fmax(lo, hi);
+    const REAL enter = fmax(fmax(a.x, a.y), fmax(a.z, t0)), leave = fmin(fmin(c.x, c.y), fmin(c.z, t1));
+    if (enter <= leave) {
+      if (nd->count > 0) {
+        for (int q = nd->first; q < nd->first + nd->count; ++q) {
+          const REAL3 v =
+              (REAL3)(OCEAN_MAP(ARCUS_PHOTON_POSITION, q), OCEAN_MAP(ARCUS_PHOTON_POSITION + 1, q),
+                      OCEAN_MAP(ARCUS_PHOTON_POSITION + 2, q)) -
+              o;
+          const REAL tc = dot(v, w), r = radii[q];
+          if (tc < t0 || tc >= t1) continue;
+          const REAL off2 = dot(v, v) - tc * tc;
+          if (off2 >= r * r) continue;
+          const REAL mu = -(OCEAN_MAP(ARCUS_PHOTON_DIRECTION, q) * w.x + OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 1, q) * w.y +
+                            OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 2, q) * w.z);
+          const REAL p = ocean_photon_phase(phases, optics, (int)OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_EVENT, q), mu) *
+                         weight / (OCEAN_PI * r * r);
+          for (int j = 0; j < ARCUS_OCEAN_MAX_HEROES; ++j) { /* the wavelengths it carries */
+            const REAL power = OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_POWER + j, q);
+            if (power == RC(0)) continue;
+            const int b = (int)OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_BIN + j, q);
+            out[b] += exp(-sigma_t[b] * tc) * p * power;
+          }
+        }
+      } else {
+        stack[top++] = nd->first + 1;
+        node = nd->first;
+        continue;
+      }
+    }
+    if (top == 0) break;
+    node = stack[--top];
+  }
+}
+
+/* The beam estimate over a straight leg [ta, tb) of a ray.  With a periodic tile
+ * (rd.tile > 0) the map holds one tile's photons, standing for their copies in every
+ * cell of the lattice across the plane: the leg is cut where it crosses cells, and each
+ * piece is searched against the copies in its own cell and in the neighbours it comes
+ * within the largest radius of (radii ≤ tile/2, render.cpp).  Each photon copy is
+ * counted in the one piece that holds its nearest point on the ray. */
+ARCUS_INLINE void ocean_beam_leg(__global const bvh_node* nodes, __global const REAL* photons, const photon_map_desc map,
+                                 __global const REAL* radii, const ocean_render_desc* rd, __global const REAL* optics,
+                                 REAL3 o, REAL3 w, REAL ta, REAL tb, REAL weight, __global REAL* out) {
+  const REAL P = rd->tile;
+  if (!(P > RC(0))) {
+    ocean_beam_piece(nodes, photons, map, radii, &rd->phases, optics, o, w, ta, tb, weight, out);
+    return;
+  }
+  REAL t = ta;
+  for (int pieces = 0; t < tb && pieces < 100000; ++pieces) {
+    /* the cell (cx, cy) the ray is in just after t, and where it leaves it */
+    const REAL3 h = o + t * w;
+    REAL cx = floor((h.x - rd->tile_x) / P + RC(0.5)), cy = floor((h.y - rd->tile_y) / P + RC(0.5));
+    REAL exit_x = (REAL)INFINITY, exit_y = (REAL)INFINITY;
+    if (w.x != RC(0)) {
+      exit_x = (rd->tile_x + (cx + (w.x > RC(0) ? RC(0.5) : RC(-0.5))) * P - o.x) / w.x;
+      if (exit_x <= t) { /* on the edge it leaves through: the next cell */
+        cx += w.x > RC(0) ? RC(1) : RC(-1);
+        exit_x += P / fabs(w.x);
+      }
+    }
+    if (w.y != RC(0)) {
+      exit_y = (rd->tile_y + (cy + (w.y > RC(0) ? RC(0.5) : RC(-0.5))) * P - o.y) / w.y;
+      if (exit_y <= t) {
+        cy += w.y > RC(0) ? RC(1) : RC(-1);
+        exit_y += P / fabs(w.y);
+      }
+    }
+    const REAL t_next = fmin(tb, fmin(exit_x, exit_y));
+    const REAL3 e = o + t_next * w;
+    /* the piece's reach, in its cell's frame: how far it comes toward each side */
+    const REAL x0 = fmin(h.x, e.x) - rd->tile_x - cx * P, x1 = fmax(h.x, e.x) - rd->tile_x - cx * P;
+    const REAL y0 = fmin(h.y, e.y) - rd->tile_y - cy * P, y1 = fmax(h.y, e.y) - rd->tile_y - cy * P;
+    for (int a = -1; a <= 1; ++a) {
+      if ((a < 0 && x0 - rd->r_max >= -P / 2) || (a > 0 && x1 + rd->r_max <= P / 2)) continue;
+      for (int b = -1; b <= 1; ++b) {
+        if ((b < 0 && y0 - rd->r_max >= -P / 2) || (b > 0 && y1 + rd->r_max <= P / 2)) continue;
+        const REAL3 shifted = o - (REAL3)((cx + (REAL)a) * P, (cy + (REAL)b) * P, RC(0));
+        ocean_beam_piece(nodes, photons, map, radii, &rd->phases, optics, shifted, w, t, t_next, weight, out);
+      }
+    }
+    t = t_next;
+  }
+}
+
 __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
   const int pixel = rd.first_pixel + (int)get_global_id(0);
   if (pixel >= rd.end_pixel) return;
@@ -97,9 +204,18 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
   __global const REAL* sky_window = sky + n;
   __global const REAL* sky_elastic = sky_window + rd.sky_cosines;
   __global const REAL* sky_inelastic = sky_elastic + (size_t)rd.sky_rows * (size_t)rd.sky_cosines * (size_t)n;
-  const REAL sky_cx = clamp((dir.z + RC(1)) * RC(0.5) * (REAL)(rd.sky_cosines - 1), RC(0), (REAL)(rd.sky_cosines - 1));
-  const int sky_c0 = min((int)sky_cx, max(rd.sky_cosines - 2, 0));
-  const REAL sky_ct = sky_cx - (REAL)sky_c0;
+  REAL sky_cx = clamp((dir.z + RC(1)) * RC(0.5) * (REAL)(rd.sky_cosines - 1), RC(0), (REAL)(rd.sky_cosines - 1));
+  int sky_c0 = min((int)sky_cx, max(rd.sky_cosines - 2, 0));
+  REAL sky_ct = sky_cx - (REAL)sky_c0;
+  const REAL through = rd.sky_rows > 0 ? sky_window[sky_c0] + sky_ct * (sky_window[sky_c0 + 1] - sky_window[sky_c0]) : RC(0);
+  /* A ray reaching the surface goes on reflected, by Fresnel's R (wholly outside
+   * Snell's window): its path below the surface is the mirror image of the straight
+   * ray's beyond it, so the march follows the straight ray and mirrors each point. */
+  const REAL to_surface = rd.surface && dir.z > RC(0) ? -eye.z / dir.z : (REAL)INFINITY;
+  const REAL reflectance = isfinite(to_surface) ? arcus_fresnel_reflectance(dir.z, rd.n_water, RC(1)) : RC(0);
+  const REAL3 mirrored = (REAL3)(dir.x, dir.y, -dir.z);
+  REAL3 w = dir; /* the direction the ray runs at this step: dir, or mirrored once reflected */
+  int reflected = 0;
 #ifdef ARCUS_USE_OCEAN_PHOTON_MAP
 #ifndef ARCUS_USE_OCEAN_BEAM
   REAL d2[ARCUS_PHOTON_MAX_K];
@@ -110,8 +226,18 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
 
   for (int s = 0; s < rd.steps; ++s) {
     const REAL t = ((REAL)s + RC(0.5)) * rd.step;
-    const REAL3 x = eye + t * dir;
-    if (rd.surface && x.z > RC(0)) break; /* through the surface: no water beyond */
+    REAL3 x = eye + t * dir;
+    if (t > to_surface) { /* reflected: the mirror image below the surface */
+      x.z = -x.z;
+      if (!reflected) { /* the first step past it */
+        reflected = 1;
+        w = mirrored;
+        for (int m = 0; m < n; ++m) T[m] *= reflectance;
+        sky_cx = clamp((w.z + RC(1)) * RC(0.5) * (REAL)(rd.sky_cosines - 1), RC(0), (REAL)(rd.sky_cosines - 1));
+        sky_c0 = min((int)sky_cx, max(rd.sky_cosines - 2, 0));
+        sky_ct = sky_cx - (REAL)sky_c0;
+      }
+    }
     /* ---- single scattering from the lights (eq. 4.5 and its elastic part) */
     if (rd.single) {
       for (int l = 0; l < rd.light_count; ++l) {
@@ -132,7 +258,7 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
           spread = RC(1) / (dist * dist);
         }
         if ((int)L[0] == ARCUS_OCEAN_EMIT_SPOT && dot(wi, (REAL3)(L[4], L[5], L[6])) < L[7]) continue;
-        const REAL mu = -dot(wi, dir); /* toward the camera: −dir */
+        const REAL mu = -dot(wi, w); /* toward the camera: −w */
         const REAL pw = ocean_phase_value(phases, optics, 0, mu), pd = ocean_phase_value(phases, optics, 1, mu),
                    pp = ocean_phase_value(phases, optics, 2, mu);
         /* the light tables at this distance (rows g, g + 1; beyond the last: its last) */
@@ -184,8 +310,8 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
       const REAL scale = rd.step * per_nm / (RC(4) / RC(3) * OCEAN_PI * r * r * r);
       for (int i = 0; i < found; ++i) {
         const int q = slot[i];
-        const REAL mu = -(OCEAN_MAP(ARCUS_PHOTON_DIRECTION, q) * dir.x + OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 1, q) * dir.y +
-                          OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 2, q) * dir.z);
+        const REAL mu = -(OCEAN_MAP(ARCUS_PHOTON_DIRECTION, q) * w.x + OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 1, q) * w.y +
+                          OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 2, q) * w.z);
         const REAL p = ocean_photon_phase(phases, optics, (int)OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_EVENT, q), mu);
         for (int j = 0; j < ARCUS_OCEAN_MAX_HEROES; ++j) { /* the wavelengths it carries */
           const REAL power = OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_POWER + j, q);
@@ -200,61 +326,20 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
   }
 
   /* ---- Snell's window: a ray reaching the surface within the march sees the sky
-   * through it, n²T L_s, dimmed along its whole path (outside the window the surface
-   * reflects the water below, which is left out) */
-  if (rd.single && rd.sky_rows > 0 && dir.z > RC(0) && -eye.z / dir.z <= rd.step * (REAL)rd.steps) {
-    const REAL through = sky_window[sky_c0] + sky_ct * (sky_window[sky_c0 + 1] - sky_window[sky_c0]);
-    const REAL to_surface = -eye.z / dir.z;
+   * through it, n²T L_s, dimmed along its whole path */
+  if (rd.single && rd.sky_rows > 0 && to_surface <= rd.step * (REAL)rd.steps)
     for (int m = 0; m < n; ++m) out[m] += through * sky[m] * exp(-sigma_t[m] * to_surface);
-  }
 
 #ifdef ARCUS_USE_OCEAN_BEAM
-  /* ---- multiple scattering: the beam estimate, one traversal of the photon spheres */
-  REAL length_max = rd.step * (REAL)rd.steps;
-  if (rd.surface && dir.z > RC(0)) length_max = fmin(length_max, -eye.z / dir.z);
-  const REAL3 inv = (REAL3)(RC(1) / dir.x, RC(1) / dir.y, RC(1) / dir.z);
-  int stack[ARCUS_BVH_MAX_DEPTH];
-  int top = 0, node = 0;
-  if (rd.multiple && map.count > 0)
-    for (;;) {
-      __global const bvh_node* nd = nodes + node;
-      /* slab test of the node's box against the segment [0, length_max] */
-      const REAL3 lo = ((REAL3)(nd->lo[0], nd->lo[1], nd->lo[2]) - eye) * inv;
-      const REAL3 hi = ((REAL3)(nd->hi[0], nd->hi[1], nd->hi[2]) - eye) * inv;
-      const REAL3 a = fmin(lo, hi), c = fmax(lo, hi);
-      const REAL enter = fmax(fmax(a.x, a.y), fmax(a.z, RC(0))), leave = fmin(fmin(c.x, c.y), fmin(c.z, length_max));
-      if (enter <= leave) {
-        if (nd->count > 0) {
-          for (int q = nd->first; q < nd->first + nd->count; ++q) {
-            const REAL3 v = (REAL3)(OCEAN_MAP(ARCUS_PHOTON_POSITION, q), OCEAN_MAP(ARCUS_PHOTON_POSITION + 1, q),
-                                    OCEAN_MAP(ARCUS_PHOTON_POSITION + 2, q)) -
-                            eye;
-            const REAL tc = dot(v, dir), r = radii[q];
-            if (tc < RC(0) || tc > length_max) continue;
-            const REAL off2 = dot(v, v) - tc * tc;
-            if (off2 >= r * r) continue;
-            const REAL mu = -(OCEAN_MAP(ARCUS_PHOTON_DIRECTION, q) * dir.x +
-                              OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 1, q) * dir.y +
-                              OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 2, q) * dir.z);
-            const REAL p = ocean_photon_phase(phases, optics, (int)OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_EVENT, q),
-                                              mu) *
-                           per_nm / (OCEAN_PI * r * r);
-            for (int j = 0; j < ARCUS_OCEAN_MAX_HEROES; ++j) { /* the wavelengths it carries */
-              const REAL power = OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_POWER + j, q);
-              if (power == RC(0)) continue;
-              const int b = (int)OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_BIN + j, q);
-              out[b] += exp(-sigma_t[b] * tc) * p * power;
-            }
-          }
-        } else {
-          stack[top++] = nd->first + 1;
-          node = nd->first;
-          continue;
-        }
-      }
-      if (top == 0) break;
-      node = stack[--top];
-    }
+  /* ---- multiple scattering: the beam estimate along the ray up to the surface, then
+   * along its reflection (the straight ray's mirror image) */
+  if (rd.multiple && map.count > 0) {
+    const REAL length = rd.step * (REAL)rd.steps;
+    ocean_beam_leg(nodes, photons, map, radii, &rd, optics, eye, dir, RC(0), fmin(length, to_surface), per_nm, out);
+    if (to_surface < length)
+      ocean_beam_leg(nodes, photons, map, radii, &rd, optics, (REAL3)(eye.x, eye.y, -eye.z), mirrored, to_surface, length,
+                     per_nm * reflectance, out);
+  }
 #endif
 }
 

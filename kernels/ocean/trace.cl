@@ -13,7 +13,8 @@
  * result depends neither on the launch's size nor on the device's lane layout.
  * Random numbers: Philox (common/philox.h), photon i's leg L (a flight and what ends
  * it) reads blocks 4 + 4L … 7 + 4L; emission reads blocks 0, 1 and (a point of a lit
- * disc on the surface) 2.
+ * disc or periodic tile on the surface) 2.  With a tile (d.tile > 0: an image of a sea
+ * the same at every horizontal place) photons are stored folded into it.
  *
  * Hero wavelengths (Wilkie et al. 2014, "Hero wavelength spectral sampling"): the
  * stored photons carry d.heroes wavelengths, the hero's grid sample k and companions
@@ -324,9 +325,12 @@ __kernel void arcus_ocean_trace(ARCUS_PARAMS(ARCUS_OCEAN_TRACE_ARGS)) {
         dir = axis;
       if (d.surface) {
         p.z = RC(0);
-        if (L[8] > RC(0)) { /* a point of the lit disc on the surface: radius R√u, uniform in area */
-          REAL b0, b1; /* block 2: the sky's direction took a0, a1 */
-          ocean_draw2(d.seed, i, 2, &b0, &b1);
+        REAL b0, b1; /* block 2: the sky's direction took a0, a1 */
+        ocean_draw2(d.seed, i, 2, &b0, &b1);
+        if (d.tile > RC(0)) { /* a point of the periodic tile, uniform */
+          p.x = d.tile_x + d.tile * (b0 - RC(0.5));
+          p.y = d.tile_y + d.tile * (b1 - RC(0.5));
+        } else if (L[8] > RC(0)) { /* a point of the lit disc on the surface: radius R√u, uniform in area */
           const REAL rr = L[8] * sqrt(b0), phi = RC(2) * OCEAN_PI * b1;
           p.x += rr * cos(phi);
           p.y += rr * sin(phi);
@@ -448,8 +452,9 @@ __kernel void arcus_ocean_trace(ARCUS_PARAMS(ARCUS_OCEAN_TRACE_ARGS)) {
       }
       if (d.store && n >= 2) { /* scattered before: the photon map's multiple scattering */
         __global REAL* sp = stored + ((size_t)i * (size_t)(d.limit - 1) + (size_t)(n - 2)) * ARCUS_OCEAN_PHOTON_REALS;
-        sp[0] = p.x;
-        sp[1] = p.y;
+        /* folded into the periodic tile: the copy of this photon that lies in it */
+        sp[0] = d.tile > RC(0) ? p.x - d.tile * floor((p.x - d.tile_x) / d.tile + RC(0.5)) : p.x;
+        sp[1] = d.tile > RC(0) ? p.y - d.tile * floor((p.y - d.tile_y) / d.tile + RC(0.5)) : p.y;
         sp[2] = p.z;
         sp[3] = arrived.x;
         sp[4] = arrived.y;

@@ -206,6 +206,7 @@ ocean::MarchParams march_of(const arcus_ocean_march& s) {
   m.multiple_scattering = s.multiple_scattering != 0;
   m.exposure = s.exposure;
   m.estimate_stride = static_cast<int>(std::min<uint32_t>(s.estimate_stride, 1u << 20));
+  m.photon_tile = s.photon_tile;
   return m;
 }
 
@@ -415,6 +416,7 @@ arcus_status arcus_ocean_march_init(arcus_ocean_march* march) {
     march->multiple_scattering = d.multiple_scattering;
     march->exposure = d.exposure;
     march->estimate_stride = static_cast<uint32_t>(d.estimate_stride);
+    march->photon_tile = d.photon_tile;
   });
 }
 

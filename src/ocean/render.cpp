@@ -103,6 +103,7 @@ const KernelSource& render_source() {
   static const KernelSource source{"ocean/render",
                                    [] {
                                      std::vector<const char*> files = photon::device_headers();
+                                     files.push_back("common/fresnel.h");  // the surface's reflection
                                      files.push_back("ocean/ocean_desc.h");
                                      files.push_back("ocean/render.cl");
                                      return files;
@@ -234,6 +235,11 @@ void check_march(const MarchParams& m) {
   require(std::isfinite(m.exposure) && m.exposure > 0, "march.exposure: must be finite and > 0, got " + number(m.exposure));
   require(m.estimate_stride >= 1 && m.estimate_stride <= 64,
           "march.estimate_stride: must be in 1..64, got " + std::to_string(m.estimate_stride));
+  require(std::isfinite(m.photon_tile) && m.photon_tile >= 0,
+          "march.photon_tile: must be finite and >= 0, got " + number(m.photon_tile));
+  // The per-step estimate's k nearest would miss the photons across the tile's edges.
+  require(m.photon_tile == 0 || m.estimator == MarchParams::beam,
+          "march.photon_tile: folds photons for the beam estimate only (march.estimator)");
 }
 
 arcus_features render_features(const WaterTables& water, const MarchParams& march) {
@@ -261,6 +267,13 @@ std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const WaterTables& w, co
   }
   if (medium.surface)
     require(camera.position[2] < 0, "camera.position: must be in the water, below the surface (z < 0)");
+  if (march.photon_tile > 0) {  // the same at every horizontal place, or the tile would not stand for it
+    bool plane = medium.surface;
+    for (const Light& L : lights) plane = plane && (L.kind == Light::directional || L.kind == Light::sky);
+    for (int a = 0; a < 2; ++a) plane = plane && !std::isfinite(medium.box_lo[a]) && !std::isfinite(medium.box_hi[a]);
+    require(plane, "march.photon_tile: needs a scene the same at every horizontal place: a surface, lit by the sun "
+                   "and the sky alone, no walls");
+  }
   const Grid& grid = w.grid;
   const size_t n = grid.count;
   auto job = std::make_unique<RenderJob>(ctx);
@@ -278,6 +291,9 @@ std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const WaterTables& w, co
     TraceParams tp = trace_params;
     tp.store = true;
     tp.depths.clear();
+    tp.tile = march.photon_tile;
+    tp.tile_center[0] = camera.position[0];
+    tp.tile_center[1] = camera.position[1];
     StageProgress stage{progress, user, 0, kTraceShare};
     trace_into(job.get(), ctx, w, lights, medium, tp, progress ? &StageProgress::call : nullptr, &stage, cancelled);
     trace_bits = job->features;
@@ -370,6 +386,10 @@ std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const WaterTables& w, co
   d.sky_rows = sky.rows;
   d.sky_cosines = sky.cosines;
   d.sky_d_step = sky.d_step;
+  d.n_water = medium.n_water;
+  d.tile = march.photon_tile;
+  d.tile_x = camera.position[0];
+  d.tile_y = camera.position[1];
   d.image_width = d.width;
   d.image_height = d.height;
 
@@ -410,6 +430,11 @@ std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const WaterTables& w, co
     rk.run((count + kRadiiChunk - 1) / kRadiiChunk);
     std::vector<double> r_slot(count);
     radii.read(ctx, 0, count * sizeof(double), r_slot.data());
+    // Folded into a tile, a photon's sphere may reach no further than the neighbouring
+    // cells' copies (render.cl, ocean_beam_leg); any radius gives a consistent estimate.
+    if (march.photon_tile > 0)
+      for (double& r : r_slot) r = std::min(r, march.photon_tile / 2);
+    d.r_max = *std::max_element(r_slot.begin(), r_slot.end());
     // The map's photons (slot order, structure of arrays) read back once.
     const size_t comps = ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_CHANNELS;
     std::vector<double> soa(comps * count);

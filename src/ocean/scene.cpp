@@ -283,7 +283,7 @@ void parse_profile(const Node& n, TraceParams* p) {
 
 MarchParams parse_march(const Node& n) {
   n.expect_object({"steps", "distance", "k", "estimator", "single_scattering", "multiple_scattering", "estimate_stride",
-                   "exposure"});
+                   "photon_tile", "exposure"});
   MarchParams m;
   if (auto v = n.find("steps")) {
     m.steps = static_cast<int>(v->integer(1000000));
@@ -302,6 +302,7 @@ MarchParams parse_march(const Node& n) {
     m.estimate_stride = static_cast<int>(v->integer(64));
     if (m.estimate_stride < 1) v->fail("expected at least 1 pixel");
   }
+  if (auto v = n.find("photon_tile")) m.photon_tile = v->number();
   if (auto v = n.find("exposure")) m.exposure = positive(*v);
   return m;
 }

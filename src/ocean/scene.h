@@ -26,6 +26,11 @@ struct MarchParams {
   // down and interpolated bilinearly between (1: at every pixel, the thesis').  The
   // estimate is smooth over its photons' radii, which span many pixels.
   int estimate_stride = 1;
+  // > 0 [m]: a scene lit only by the sun and the sky over a flat surface is the same at
+  // every horizontal place, so its photons enter through one square tile of this width
+  // about the camera and stand for every copy of it across the plane: the beam estimate
+  // folds each ray into the tile (render.cl).  0: they enter through the lights' discs.
+  double photon_tile = 0;
   double exposure = 1;              // PNG: linear sRGB × exposure before encoding
 };
 

@@ -33,15 +33,17 @@ bool finite3(const double* v) { return std::isfinite(v[0]) && std::isfinite(v[1]
 
 // Each light's power in each grid band [W]: its spectrum at the sample times the band
 // (step_nm; the whole spectrum's value for a one-sample grid) times, for directional
-// and sky light, the area it falls on (the beam's disc or the lit disc of the surface;
-// without a radius 1 m² of surface).
-std::vector<double> band_powers(const std::vector<Light>& lights, const Grid& grid) {
+// and sky light, the area it falls on (the beam's disc, the lit disc of the surface or
+// the periodic tile; without either 1 m² of surface).
+std::vector<double> band_powers(const std::vector<Light>& lights, const Grid& grid, double tile) {
   std::vector<double> w(lights.size() * grid.count);
   const double band = grid.count == 1 ? 1.0 : grid.step_nm;
   for (size_t l = 0; l < lights.size(); ++l) {
     const Light& L = lights[l];
     double area = 1;
-    if ((L.kind == Light::directional || L.kind == Light::sky) && L.radius > 0) area = kPi * L.radius * L.radius;
+    const bool plane = L.kind == Light::directional || L.kind == Light::sky;
+    if (plane && tile > 0) area = tile * tile;
+    else if (plane && L.radius > 0) area = kPi * L.radius * L.radius;
     for (int k = 0; k < grid.count; ++k) w[l * grid.count + k] = light_spectrum(L, grid.nm(k)) * band * area;
   }
   return w;
@@ -281,7 +283,7 @@ void trace_into(TraceJob* job, arcus_context_t* ctx, const WaterTables& water, c
                                                  0};
     light_buf.insert(light_buf.end(), rec, rec + ARCUS_OCEAN_LIGHT_REALS);
   }
-  std::vector<double> cdf = band_powers(lights, grid);
+  std::vector<double> cdf = band_powers(lights, grid, params.tile);
   const double total = std::accumulate(cdf.begin(), cdf.end(), 0.0);
   require(total > 0 && std::isfinite(total), "lights: emit nothing on the grid's wavelengths");
   std::partial_sum(cdf.begin(), cdf.end(), cdf.begin());
@@ -299,6 +301,9 @@ void trace_into(TraceJob* job, arcus_context_t* ctx, const WaterTables& water, c
     d.box_hi[a] = medium.box_hi[a];
   }
   d.layer = params.layer;
+  d.tile = params.tile;
+  d.tile_x = params.tile_center[0];
+  d.tile_y = params.tile_center[1];
   d.seed = params.seed;
   d.count = grid.count;
   d.heroes = carried_wavelengths(params.wavelengths_per_photon, grid.count);

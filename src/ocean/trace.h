@@ -62,6 +62,11 @@ struct TraceParams {
   // Inelastic code: compiled when the water has inelastic events; `force_inelastic`
   // compiles it anyway (the ablation and the feature test).
   bool force_inelastic = false;
+  // > 0 [m]: the sun's and the sky's photons enter through the square tile of this
+  // width centred on tile_center (x, y) and are stored folded into it (an image's
+  // periodic photons: MarchParams::photon_tile); 0: through the lights' discs.
+  double tile = 0;
+  double tile_center[2] = {0, 0};
 };
 
 // Checks (INVALID_ARGUMENT naming the parameter).

@@ -90,6 +90,15 @@ TEST(OceanScene, EveryBundledSceneLoads) {
     if (f.filename() == "fig5_9.json") {  // Fig. 5.9's tallies: the thesis' trace, settings and all
       EXPECT_EQ(d.trace.photons, 400000u);
       EXPECT_EQ(d.trace.max_interactions, 10);
+    } else if (d.trace.depths.empty() && d.march.photon_tile > 0) {
+      // The waters in daylight: the photons of one 8 m tile standing for the whole sea
+      // (1-2 M, radii holding 1250-5000: docs/ocean.md), the estimate at every eighth
+      // pixel of 512.
+      ASSERT_TRUE(d.has_camera);
+      EXPECT_EQ(d.march.photon_tile, 8.0);
+      EXPECT_GE(d.trace.photons, 1000000u);
+      EXPECT_EQ(d.march.estimator, MarchParams::beam);
+      EXPECT_EQ(d.march.estimate_stride * 64, int(d.camera.width));
     } else if (d.trace.depths.empty()) {
       // The images: 2 M photons of four wavelengths, each photon's radius holding
       // 1250 (the radius of the thesis' 250 of 400 000, §5.3), 200 steps, the photon

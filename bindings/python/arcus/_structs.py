@@ -208,6 +208,7 @@ class OceanMarchStruct(ctypes.Structure):
         ("multiple_scattering", c_int32),
         ("exposure", c_double),
         ("estimate_stride", c_uint32),
+        ("photon_tile", c_double),
     ]
 
 
