@@ -205,7 +205,9 @@ ARCUS_API arcus_status arcus_job_get_ocean_photons(arcus_job_t* job, size_t* cou
  * Camera rays marched through the water (thesis §4.1.4, §4.2): single scattering from
  * the lights (elastic and inelastic, eq. 4.5) and multiple scattering from a photon map
  * of the photons stored from their second interaction on (eq. 4.6), per grid sample,
- * then CIE 1931 XYZ and linear sRGB.  Point and spot lights in unbounded water. */
+ * then CIE 1931 XYZ and linear sRGB.  Point and spot lamps in the water; the sun and
+ * the sky over a flat surface (setup.surface), which reflects the rays reaching it by
+ * Fresnel's R, wholly outside Snell's window. */
 #define ARCUS_OCEAN_ESTIMATE_PER_STEP 0 /* the thesis': k nearest photons at each step */
 #define ARCUS_OCEAN_ESTIMATE_BEAM 1     /* Jarosz, Zwicker & Jensen 2008: photons along the ray */
 
