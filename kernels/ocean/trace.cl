@@ -185,12 +185,6 @@ ARCUS_INLINE REAL ocean_event_coefficient(const ocean_desc* d, __global const RE
 }
 
 /* The extinction σ_t at grid sample k. */
-ARCUS_INLINE REAL ocean_extinction_at(const ocean_desc* d, __global const REAL* water, int k) {
-  REAL sum = RC(0);
-  for (int a = 0; a < d->events; ++a) sum += water[(size_t)a * (size_t)d->count + (size_t)k];
-  return sum;
-}
-
 /* The carried wavelengths' path densities times e^(−σ_t len) and, for an interaction
  * (e ≥ 0), σ_e; rescaled so that the largest is 1 (only their ratios matter). */
 ARCUS_INLINE void ocean_heroes_follow(const ocean_desc* d, __global const REAL* water, int heroes, const int* hk,
@@ -198,7 +192,7 @@ ARCUS_INLINE void ocean_heroes_follow(const ocean_desc* d, __global const REAL* 
   if (heroes < 2) return;
   REAL top = RC(0);
   for (int j = 0; j < heroes; ++j) {
-    like[j] *= exp(-ocean_extinction_at(d, water, hk[j]) * len);
+    like[j] *= exp(-ocean_extinction(d, water, hk[j], hk[j], RC(0)) * len); /* at grid sample hk[j] */
     if (e >= 0) like[j] *= ocean_event_coefficient(d, water, e, hk[j]);
     top = fmax(top, like[j]);
   }
