@@ -421,7 +421,7 @@ def test_a_periodic_photon_tile_stands_for_the_whole_sea(ctx):
     """The sun straight down on a flat sea (plane irradiance 1 W/m²/nm, T = 1 − ((n−1)/
     (n+1))²) over isotropic water (a = 0.05, b = 2 /m), one wavelength: the light field
     is the same at every horizontal place, so an image's photons may all enter through
-    one 2 m tile and stand for its copies across the plane (march.photon_tile).  A fan
+    one 1 m tile and stand for its copies across the plane (march.photon_tile).  A fan
     of horizontal rays at depth z sees the photon map's multiple scattering only:
     ∫ e^(−ct) b/(4π) E0_s(z) dt = b E0_s(z) (1 − e^(−cD)) / (4π c), where E0_s is the
     scalar irradiance of the light scattered before, the same photons' first four legs
@@ -430,10 +430,12 @@ def test_a_periodic_photon_tile_stands_for_the_whole_sea(ctx):
     unscattered beam's T e^(−cz).  This checks the tile's area (the power each photon
     carries), the fold of every ray into it and the copies across its edges (the rays
     cross 5 m of tiles).  The fan's rays all pass the same photons at one depth, so its
-    mean keeps the photons' own noise: over seeds 1-4 it came within −1.0 … +3.1 % (sd
-    1.7 %), and the radii (~0.2 m) blur the profile, which falls e-fold in 0.9 m here
-    (five interactions at most), by (Kr)²/10 ≈ 0.5 %.  Bound 5 %, about 3 sd: a wrong
-    tile area or a copy counted twice or missed across an edge errs by tens of %."""
+    mean keeps the photons' own noise: over four other seeds it came within −1.1 …
+    +1.2 % (with 2 m tiles −1.0 … +3.1 %), and the radii (~0.2 m) blur the profile,
+    which falls e-fold in 0.9 m here (five interactions at most), by (Kr)²/10 ≈ 0.5 %.
+    Bound 5 %: a wrong tile area is off by a large factor, a copy counted twice doubles
+    the light, and the copies across the edges, within r ≈ 0.2 m of edges 1 m apart,
+    hold about 2r/P, a fifth of it (an estimate)."""
     a, b, n, z, distance = 0.05, 2.0, 1.34, 1.0, 5.0
     c = a + b
     water = ocean.Water.from_iops(a, b, phase="isotropic")
@@ -450,6 +452,6 @@ def test_a_periodic_photon_tile_stands_for_the_whole_sea(ctx):
            "view": {"camera": {"position": [0.3, 0.7, -z], "look_at": [1.3, 0.2, -z], "up": [0, 0, 1],
                                "vfov_deg": 0.5, "width": 24, "height": 1},
                     "march": {"steps": 100, "distance": distance, "k": 1000, "estimator": "beam",
-                              "single_scattering": False, "photon_tile": 2.0}}}
+                              "single_scattering": False, "photon_tile": 1.0}}}
     fan = ocean.render(doc, context=ctx).spectral[0, :, 0]
     assert fan.mean() == pytest.approx(expect, rel=0.05), (fan.mean() / expect - 1)
