@@ -204,6 +204,10 @@ ARCUS_DECLARE_OCEAN_DESC(arcus_ocean_desc, arcus_ocean_phases, double, int32_t, 
 
 #ifdef __OPENCL_C_VERSION__
 ARCUS_DECLARE_OCEAN_RENDER_DESC(ocean_render_desc, ocean_phases, REAL, int);
+/* Which cell of the lattice of periodic photon tiles (width P, cell 0 centred on
+ * `centre`) coordinate x lies in: trace.cl folds photons into cell 0, render.cl finds
+ * the cells a ray crosses. */
+ARCUS_INLINE REAL ocean_tile_cell(REAL x, REAL centre, REAL P) { return floor((x - centre) / P + RC(0.5)); }
 #else
 ARCUS_DECLARE_OCEAN_RENDER_DESC(arcus_ocean_render_desc, arcus_ocean_phases, double, int32_t);
 #endif

@@ -72,6 +72,14 @@ ARCUS_INLINE REAL ocean_photon_phase(const ocean_phases* p, __global const REAL*
 
 #define OCEAN_MAP(c, slot) PHOTON(photons, map, c, slot)
 
+/* The sky tables' column below a ray's vertical cosine wz (*c0) and its weight toward
+ * the next (*ct): the tables run over cosines −1 … 1. */
+ARCUS_INLINE void ocean_sky_column(REAL wz, int cosines, int* c0, REAL* ct) {
+  const REAL cx = clamp((wz + RC(1)) * RC(0.5) * (REAL)(cosines - 1), RC(0), (REAL)(cosines - 1));
+  *c0 = min((int)cx, max(cosines - 2, 0));
+  *ct = cx - (REAL)*c0;
+}
+
 /* The beam estimate over one straight piece of a ray: the photons whose point nearest
  * the line o + t w lies at t in [t0, t1) and whose sphere the line passes through, each
  * dimmed by e^(−σ_t t) (t: the whole path's length to it) and by `weight`. */
@@ -140,7 +148,7 @@ ARCUS_INLINE void ocean_beam_leg(__global const bvh_node* nodes, __global const 
   for (int pieces = 0; t < tb && pieces < 100000; ++pieces) {
     /* the cell (cx, cy) the ray is in just after t, and where it leaves it */
     const REAL3 h = o + t * w;
-    REAL cx = floor((h.x - rd->tile_x) / P + RC(0.5)), cy = floor((h.y - rd->tile_y) / P + RC(0.5));
+    REAL cx = ocean_tile_cell(h.x, rd->tile_x, P), cy = ocean_tile_cell(h.y, rd->tile_y, P);
     REAL exit_x = (REAL)INFINITY, exit_y = (REAL)INFINITY;
     if (w.x != RC(0)) {
       exit_x = (rd->tile_x + (cx + (w.x > RC(0) ? RC(0.5) : RC(-0.5))) * P - o.x) / w.x;
@@ -204,9 +212,9 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
   __global const REAL* sky_window = sky + n;
   __global const REAL* sky_elastic = sky_window + rd.sky_cosines;
   __global const REAL* sky_inelastic = sky_elastic + (size_t)rd.sky_rows * (size_t)rd.sky_cosines * (size_t)n;
-  REAL sky_cx = clamp((dir.z + RC(1)) * RC(0.5) * (REAL)(rd.sky_cosines - 1), RC(0), (REAL)(rd.sky_cosines - 1));
-  int sky_c0 = min((int)sky_cx, max(rd.sky_cosines - 2, 0));
-  REAL sky_ct = sky_cx - (REAL)sky_c0;
+  int sky_c0;
+  REAL sky_ct;
+  ocean_sky_column(dir.z, rd.sky_cosines, &sky_c0, &sky_ct);
   const REAL through = rd.sky_rows > 0 ? sky_window[sky_c0] + sky_ct * (sky_window[sky_c0 + 1] - sky_window[sky_c0]) : RC(0);
   /* A ray reaching the surface goes on reflected, by Fresnel's R (wholly outside
    * Snell's window): its path below the surface is the mirror image of the straight
@@ -233,9 +241,7 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
         reflected = 1;
         w = mirrored;
         for (int m = 0; m < n; ++m) T[m] *= reflectance;
-        sky_cx = clamp((w.z + RC(1)) * RC(0.5) * (REAL)(rd.sky_cosines - 1), RC(0), (REAL)(rd.sky_cosines - 1));
-        sky_c0 = min((int)sky_cx, max(rd.sky_cosines - 2, 0));
-        sky_ct = sky_cx - (REAL)sky_c0;
+        ocean_sky_column(w.z, rd.sky_cosines, &sky_c0, &sky_ct);
       }
     }
     /* ---- single scattering from the lights (eq. 4.5 and its elastic part) */

@@ -184,7 +184,6 @@ ARCUS_INLINE REAL ocean_event_coefficient(const ocean_desc* d, __global const RE
   return RC(0);
 }
 
-/* The extinction σ_t at grid sample k. */
 /* The carried wavelengths' path densities times e^(−σ_t len) and, for an interaction
  * (e ≥ 0), σ_e; rescaled so that the largest is 1 (only their ratios matter). */
 ARCUS_INLINE void ocean_heroes_follow(const ocean_desc* d, __global const REAL* water, int heroes, const int* hk,
@@ -447,8 +446,8 @@ __kernel void arcus_ocean_trace(ARCUS_PARAMS(ARCUS_OCEAN_TRACE_ARGS)) {
       if (d.store && n >= 2) { /* scattered before: the photon map's multiple scattering */
         __global REAL* sp = stored + ((size_t)i * (size_t)(d.limit - 1) + (size_t)(n - 2)) * ARCUS_OCEAN_PHOTON_REALS;
         /* folded into the periodic tile: the copy of this photon that lies in it */
-        sp[0] = d.tile > RC(0) ? p.x - d.tile * floor((p.x - d.tile_x) / d.tile + RC(0.5)) : p.x;
-        sp[1] = d.tile > RC(0) ? p.y - d.tile * floor((p.y - d.tile_y) / d.tile + RC(0.5)) : p.y;
+        sp[0] = d.tile > RC(0) ? p.x - d.tile * ocean_tile_cell(p.x, d.tile_x, d.tile) : p.x;
+        sp[1] = d.tile > RC(0) ? p.y - d.tile * ocean_tile_cell(p.y, d.tile_y, d.tile) : p.y;
         sp[2] = p.z;
         sp[3] = arrived.x;
         sp[4] = arrived.y;
