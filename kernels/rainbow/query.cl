@@ -27,7 +27,12 @@
  * Host prepends: common/real.h, bvh/bvh_desc.h, bvh/traverse.h, rainbow/rainbow_desc.h,
  * rainbow/optics.h, rainbow/airy.h. */
 
-#define RB_MAX_PAIRED 8   /* contributions remembered per direction for the pairing */
+/* The pairing remembers the first two contributions of each term (a term with more
+ * than two patches at a direction is no single fold there and keeps its plain sum).
+ * Slots per term, not one shared pool: a pool of 8 filled up at P ≥ 5, where the
+ * terms p = 4…P send several patches each to the primary bow's angles, and left the
+ * primary's two rays unpaired there — their plain sum, 6× Debye's p = 2 peak at 100 µm. */
+#define RB_PAIR_SLOTS (2 * (ARCUS_RAINBOW_MAX_BOUNCES + 1))
 #define RB_UNIFORM_ZETA 30 /* ζ beyond which the two rays' sum is the Airy form to ~1e-6 */
 
 /* The bilinear coordinates (s, t) of the direction d in the patch with corners c0..c3
@@ -80,10 +85,12 @@ __kernel void arcus_rainbow_query(ARCUS_PARAMS(ARCUS_RAINBOW_QUERY_ARGS)) {
   __global REAL* o = out + (size_t)i * (size_t)q.terms * ARCUS_RAINBOW_QUERY_REALS;
   for (int c = 0; c < q.terms * ARCUS_RAINBOW_QUERY_REALS; ++c) o[c] = RC(0);
   const REAL d[3] = {dirs[3 * i], dirs[3 * i + 1], dirs[3 * i + 2]};
-  /* the contributions, for the pairing at caustics: term, focal lines, path phase and the
-   * four amplitudes without phases */
-  int kept = 0, kept_p[RB_MAX_PAIRED], kept_f[RB_MAX_PAIRED];
-  REAL kept_phase[RB_MAX_PAIRED], kept_a[RB_MAX_PAIRED][8];
+  /* the contributions, for the pairing at caustics: per term the number of patches
+   * holding the direction and the first two's focal lines, path phases and four
+   * amplitudes without phases (slots 2p and 2p + 1) */
+  int kept_n[ARCUS_RAINBOW_MAX_BOUNCES + 1], kept_f[RB_PAIR_SLOTS];
+  REAL kept_phase[RB_PAIR_SLOTS], kept_a[RB_PAIR_SLOTS][8];
+  for (int p = 0; p <= ARCUS_RAINBOW_MAX_BOUNCES; ++p) kept_n[p] = 0;
   bvh_ray r;
   bvh_ray_init(&r, RC(0), RC(0), RC(0), d[0], d[1], d[2]);
   bvh_walk w;
@@ -117,31 +124,24 @@ __kernel void arcus_rainbow_query(ARCUS_PARAMS(ARCUS_RAINBOW_QUERY_ARGS)) {
       op[2 * k + 1] += z.im;
       op[8 + k] += e[2 * k] * e[2 * k] + e[2 * k + 1] * e[2 * k + 1];
     }
-    if (q.coherent && kept < RB_MAX_PAIRED) {
+    if (q.coherent && kept_n[pt.p]++ < 2) {
+      const int slot = 2 * pt.p + kept_n[pt.p] - 1;
       const int focal = (int)c[0][12]; /* a kept patch's corners all passed the same */
       const REAL back = RC(1.5707963267948966) * (REAL)focal; /* undo the corners' −π/2·F */
       const rb_complex unturn = rb_c(cos(back), sin(back));
-      kept_p[kept] = pt.p;
-      kept_f[kept] = focal;
-      kept_phase[kept] = phase;
+      kept_f[slot] = focal;
+      kept_phase[slot] = phase;
       for (int k = 0; k < 4; ++k) {
         const rb_complex a = rb_mul(rb_c(e[2 * k], e[2 * k + 1]), unturn);
-        kept_a[kept][2 * k] = a.re;
-        kept_a[kept][2 * k + 1] = a.im;
+        kept_a[slot][2 * k] = a.re;
+        kept_a[slot][2 * k + 1] = a.im;
       }
-      ++kept;
     }
   }
   /* the uniform approximation where a term's two rays meet at a fold */
   for (int p = 0; p < q.terms && q.coherent; ++p) {
-    int first = -1, second = -1, n = 0;
-    for (int k = 0; k < kept; ++k)
-      if (kept_p[k] == p) {
-        if (n == 0) first = k;
-        if (n == 1) second = k;
-        ++n;
-      }
-    if (n != 2 || abs(kept_f[first] - kept_f[second]) != 1) continue;
+    const int first = 2 * p, second = 2 * p + 1;
+    if (kept_n[p] != 2 || abs(kept_f[first] - kept_f[second]) != 1) continue;
     const int hi = kept_f[first] > kept_f[second] ? first : second, lo = hi == first ? second : first;
     const REAL xi = RC(0.5) * (kept_phase[hi] - kept_phase[lo]);
     if (!(xi > RC(0))) continue; /* not the two rays of one fold */
