@@ -72,6 +72,7 @@ ARCUS_INLINE REAL ocean_photon_phase(const ocean_phases* p, __global const REAL*
 
 #define OCEAN_MAP(c, slot) PHOTON(photons, map, c, slot)
 
+
 /* The sky tables' column below a ray's vertical cosine wz (*c0) and its weight toward
  * the next (*ct): the tables run over cosines −1 … 1. */
 ARCUS_INLINE void ocean_sky_column(REAL wz, int cosines, int* c0, REAL* ct) {
@@ -226,8 +227,8 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
   int reflected = 0;
 #ifdef ARCUS_USE_OCEAN_PHOTON_MAP
 #ifndef ARCUS_USE_OCEAN_BEAM
-  REAL d2[ARCUS_PHOTON_MAX_K];
-  int slot[ARCUS_PHOTON_MAX_K];
+  REAL d2[ARCUS_PHOTON_SEARCH_CAPACITY];
+  int slot[ARCUS_PHOTON_SEARCH_CAPACITY];
   REAL bound = (REAL)INFINITY; /* the k-th nearest distance at the last step + Δt */
 #endif
 #endif
@@ -321,6 +322,7 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
         const REAL p = ocean_photon_phase(phases, optics, (int)OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_EVENT, q), mu);
         for (int j = 0; j < ARCUS_OCEAN_MAX_HEROES; ++j) { /* the wavelengths it carries */
           const REAL power = OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_POWER + j, q);
+          if (power == RC(0)) continue;
           const int b = (int)OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_BIN + j, q);
           out[b] += T[b] * p * power * scale;
         }
@@ -359,8 +361,8 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
  * search and loses none of the kr nearest. */
 __kernel void arcus_ocean_photon_radii(ARCUS_PARAMS(ARCUS_OCEAN_RADII_ARGS)) {
   const int first = (int)get_global_id(0) * chunk;
-  REAL d2[ARCUS_PHOTON_MAX_K];
-  int slot[ARCUS_PHOTON_MAX_K];
+  REAL d2[ARCUS_PHOTON_SEARCH_CAPACITY];
+  int slot[ARCUS_PHOTON_SEARCH_CAPACITY];
   REAL bound = (REAL)INFINITY;
   REAL3 last = (REAL3)(RC(0), RC(0), RC(0));
   const REAL scale = cbrt((REAL)k / (REAL)kr);

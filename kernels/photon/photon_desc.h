@@ -17,9 +17,12 @@
  * event and its photons' wavelengths and powers, ocean/ocean_desc.h).  The limit keeps
  * an estimate's sums in private memory; more need a raise here. */
 #define ARCUS_PHOTON_CHANNELS 9
-/* Largest k of a k-nearest-neighbour query: the bounded heap lives in private memory
- * (512 × (8 + 4) bytes in double precision). */
+/* Largest k of a k-nearest-neighbour query: its search's arrays live in private memory
+ * (2 × 512 × (8 + 4) bytes in double precision). */
 #define ARCUS_PHOTON_MAX_K 512
+/* The search's scratch arrays (photon_map.h, photon_knn): room for the photons within
+ * a bound a little beyond the k-th before they are cut down to k. */
+#define ARCUS_PHOTON_SEARCH_CAPACITY (2 * ARCUS_PHOTON_MAX_K)
 
 /* Components of the photon buffer, each `count` reals long. */
 #define ARCUS_PHOTON_POSITION 0  /* x y z                                     */

@@ -10,8 +10,8 @@ __kernel void arcus_photon_estimate(__global const bvh_node* nodes, __global con
                                     __global int* found) {
   const size_t i = get_global_id(0), n = (size_t)q.count;
   if (i >= n) return;
-  REAL d2[ARCUS_PHOTON_MAX_K];
-  int slot[ARCUS_PHOTON_MAX_K];
+  REAL d2[ARCUS_PHOTON_SEARCH_CAPACITY];
+  int slot[ARCUS_PHOTON_SEARCH_CAPACITY];
   REAL out[ARCUS_PHOTON_CHANNELS], r;
   const int surface = q.mode == ARCUS_PHOTON_SURFACE;
   const REAL nx = surface ? queries[3 * n + i] : RC(0), ny = surface ? queries[4 * n + i] : RC(0),
@@ -31,14 +31,14 @@ __kernel void arcus_photon_knn(__global const bvh_node* nodes, __global const RE
                                __global int* slots, __global REAL* dist2, __global int* found) {
   const size_t i = get_global_id(0), n = (size_t)q.count, k = (size_t)q.k;
   if (i >= n) return;
-  REAL d2[ARCUS_PHOTON_MAX_K];
-  int slot[ARCUS_PHOTON_MAX_K];
+  REAL d2[ARCUS_PHOTON_SEARCH_CAPACITY];
+  int slot[ARCUS_PHOTON_SEARCH_CAPACITY];
   const int surface = q.mode == ARCUS_PHOTON_SURFACE;
   const REAL nx = surface ? queries[3 * n + i] : RC(0), ny = surface ? queries[4 * n + i] : RC(0),
              nz = surface ? queries[5 * n + i] : RC(0);
   const int m = photon_knn(nodes, photons, map, queries[i], queries[n + i], queries[2 * n + i], nx, ny, nz, q.k,
                            q.max_radius * q.max_radius, d2, slot);
-  photon_heap_sort(d2, slot, m);
+  photon_sort(d2, slot, m);
   for (size_t j = 0; j < k; ++j) {
     const int in = (int)j < m;
     slots[i * k + j] = in ? slot[j] : -1;

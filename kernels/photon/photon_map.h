@@ -3,10 +3,10 @@
  * variant, where photons are stored along bent paths but gathered the same way).
  *
  * One query per work-item, scalar: a traversal's branches differ from query to query,
- * so lanes would mostly idle.  The k best photons so far are a max-heap on distance²
- * in the caller's private arrays; once it holds k, the search radius shrinks to its top,
- * and subtrees whose box lies farther are skipped.  Ties are broken by slot, so the
- * result is "the k smallest (distance², slot)" whatever the traversal order.
+ * so lanes would mostly idle.  The photons within the search radius are collected in
+ * the caller's private arrays and the k nearest selected from them (photon_knn);
+ * subtrees whose box lies farther are skipped.  Ties are broken by slot, so the result
+ * is "the k smallest (distance², slot)" whatever the traversal order.
  *
  * Another kernel uses it by prepending common/real.h, bvh/bvh_desc.h,
  * photon/photon_desc.h and this file, taking the map's nodes, photons and
@@ -26,7 +26,7 @@ ARCUS_INLINE REAL photon_box_d2(__global const bvh_node* n, REAL x, REAL y, REAL
   return dx * dx + dy * dy + dz * dz;
 }
 
-/* Whether (da, sa) comes after (db, sb): the heap's order. */
+/* Whether (da, sa) comes after (db, sb): the order of the search's results. */
 ARCUS_INLINE int photon_after(REAL da, int sa, REAL db, int sb) { return da > db || (da == db && sa > sb); }
 
 /* Adds (d, s) to the max-heap of n entries. */
@@ -60,8 +60,9 @@ ARCUS_INLINE void photon_heap_replace_top(REAL* d2, int* slot, int n, REAL d, in
   slot[i] = s;
 }
 
-/* Sorts a max-heap of n entries into ascending (distance², slot) order, in place. */
-ARCUS_INLINE void photon_heap_sort(REAL* d2, int* slot, int n) {
+/* Sorts n entries into ascending (distance², slot) order, in place (heap sort). */
+ARCUS_INLINE void photon_sort(REAL* d2, int* slot, int n) {
+  for (int i = 1; i < n; ++i) photon_heap_push(d2, slot, i, d2[i], slot[i]);
   for (int m = n - 1; m > 0; --m) {
     const REAL d = d2[m];
     const int s = slot[m];
@@ -71,16 +72,53 @@ ARCUS_INLINE void photon_heap_sort(REAL* d2, int* slot, int n) {
   }
 }
 
+/* Reorders d2[]/slot[] (n entries) so that entry `at` holds the (at+1)-th smallest
+ * (distance², slot), the ones before it smaller and the ones after it larger
+ * (Hoare's selection, the middle entry as pivot; expected O(n)). */
+ARCUS_INLINE void photon_select(REAL* d2, int* slot, int n, int at) {
+  int lo = 0, hi = n - 1;
+  while (hi > lo) {
+    const int mid = lo + (hi - lo) / 2;
+    const REAL pd = d2[mid];
+    const int ps = slot[mid];
+    int i = lo, j = hi;
+    while (i <= j) {
+      while (photon_after(pd, ps, d2[i], slot[i])) ++i;
+      while (photon_after(d2[j], slot[j], pd, ps)) --j;
+      if (i <= j) {
+        const REAL td = d2[i];
+        d2[i] = d2[j];
+        d2[j] = td;
+        const int ts = slot[i];
+        slot[i] = slot[j];
+        slot[j] = ts;
+        ++i;
+        --j;
+      }
+    }
+    if (at <= j) hi = j;
+    else if (at >= i) lo = i;
+    else break;
+  }
+}
+
 /* The up to k (1..ARCUS_PHOTON_MAX_K) photons nearest to (x, y, z) within distance²
- * max_r2 (inclusive; may be +inf): returns how many were found and leaves them in
- * d2[]/slot[] (capacity ≥ k) as a max-heap, d2[0] the farthest.  With a non-zero normal
- * (nx, ny, nz) only photons arriving from its side count: dot(normal, −dir) > 0. */
+ * max_r2 (inclusive; may be +inf): the k smallest (distance², slot), whatever the
+ * traversal order.  With a non-zero normal (nx, ny, nz) only photons arriving from its
+ * side count: dot(normal, −dir) > 0.  Returns how many were found and leaves them in
+ * d2[]/slot[] (ARCUS_PHOTON_SEARCH_CAPACITY entries) in no particular order except that
+ * d2[0] is the farthest.
+ *
+ * Every photon within the bound is collected and the k smallest selected at the end;
+ * when the arrays fill, the k smallest are kept and the bound shrinks to the k-th.
+ * Given a bound that holds little more than k photons (a march's last r_k + Δt), that
+ * is a constant amount of work per photon where a heap of the k best does log k. */
 ARCUS_INLINE int photon_knn(__global const bvh_node* nodes, __global const REAL* photons, const photon_map_desc map,
                             REAL x, REAL y, REAL z, REAL nx, REAL ny, REAL nz, int k, REAL max_r2, REAL* d2,
                             int* slot) {
   if (map.count == 0 || k < 1) return 0;
   const int oriented = nx != RC(0) || ny != RC(0) || nz != RC(0);
-  int found = 0;
+  int n = 0;
   REAL bound = max_r2; /* farthest distance² still of interest */
   /* The nearer child is visited first and the farther one pushed with its distance²,
    * so at most one node per level waits: the builder keeps depth ≤ ARCUS_BVH_MAX_DEPTH. */
@@ -89,9 +127,9 @@ ARCUS_INLINE int photon_knn(__global const bvh_node* nodes, __global const REAL*
   int top = 0, node = 0;
   if (photon_box_d2(nodes, x, y, z) > bound) return 0;
   for (;;) {
-    __global const bvh_node* n = nodes + node;
-    if (n->count > 0) {
-      for (int s = n->first; s < n->first + n->count; ++s) {
+    __global const bvh_node* nd = nodes + node;
+    if (nd->count > 0) {
+      for (int s = nd->first; s < nd->first + nd->count; ++s) {
         const REAL dx = PHOTON(photons, map, ARCUS_PHOTON_POSITION, s) - x;
         const REAL dy = PHOTON(photons, map, ARCUS_PHOTON_POSITION + 1, s) - y;
         const REAL dz = PHOTON(photons, map, ARCUS_PHOTON_POSITION + 2, s) - z;
@@ -102,16 +140,17 @@ ARCUS_INLINE int photon_knn(__global const bvh_node* nodes, __global const REAL*
                                 nz * PHOTON(photons, map, ARCUS_PHOTON_DIRECTION + 2, s) >=
                             RC(0))
           continue; /* travelling along the normal: it arrived from behind */
-        if (found < k) {
-          photon_heap_push(d2, slot, found++, d, s);
-          if (found == k) bound = d2[0];
-        } else if (photon_after(d2[0], slot[0], d, s)) {
-          photon_heap_replace_top(d2, slot, k, d, s);
-          bound = d2[0];
+        if (n == ARCUS_PHOTON_SEARCH_CAPACITY) { /* full: keep the k smallest, search no farther than the k-th */
+          photon_select(d2, slot, n, k - 1);
+          n = k;
+          bound = d2[k - 1];
+          if (!photon_after(bound, slot[k - 1], d, s)) continue;
         }
+        d2[n] = d;
+        slot[n++] = s;
       }
     } else {
-      int a = n->first, b = n->first + 1;
+      int a = nd->first, b = nd->first + 1;
       REAL da = photon_box_d2(nodes + a, x, y, z), db = photon_box_d2(nodes + b, x, y, z);
       if (db < da) {
         const int t = a;
@@ -132,7 +171,22 @@ ARCUS_INLINE int photon_knn(__global const bvh_node* nodes, __global const REAL*
     }
     /* Next: the latest pushed node still within the (possibly shrunk) bound. */
     do {
-      if (top == 0) return found;
+      if (top == 0) {
+        if (n > k) {
+          photon_select(d2, slot, n, k - 1);
+          n = k;
+        }
+        int far = 0; /* the farthest first */
+        for (int i = 1; i < n; ++i)
+          if (photon_after(d2[i], slot[i], d2[far], slot[far])) far = i;
+        const REAL td = d2[0];
+        d2[0] = d2[far];
+        d2[far] = td;
+        const int ts = slot[0];
+        slot[0] = slot[far];
+        slot[far] = ts;
+        return n;
+      }
       --top;
       node = stack[top];
     } while (stack_d2[top] > bound);
@@ -151,7 +205,7 @@ ARCUS_INLINE int photon_knn(__global const bvh_node* nodes, __global const REAL*
  * photon is weighted 1 − d/(cone·r) and the sum normalised by the filter's integral:
  * 1 − 2/(3 cone) on a disc, 1 − 3/(4 cone) in a ball.  k photons exactly at the query
  * point give r = 0 and an infinite estimate, as the density is.  Returns the count
- * found; *radius = r.  d2[]/slot[] are the scratch heap of photon_knn. */
+ * found; *radius = r.  d2[]/slot[] are photon_knn's scratch arrays. */
 ARCUS_INLINE int photon_estimate(__global const bvh_node* nodes, __global const REAL* photons,
                                  const photon_map_desc map, REAL x, REAL y, REAL z, REAL nx, REAL ny, REAL nz,
                                  const photon_query_desc* q, REAL* d2, int* slot, REAL* out, REAL* radius) {

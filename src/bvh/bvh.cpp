@@ -102,9 +102,10 @@ bool representable(const double p[3]) {
   return true;
 }
 
-Flat build(const std::vector<Bounds>& prims, int max_leaf) {
+Flat build(const std::vector<Bounds>& prims, int max_leaf, int min_leaf) {
   require(max_leaf >= 1 && max_leaf <= RTC_BUILD_MAX_PRIMITIVES_PER_LEAF,
           "bvh: max_leaf must be 1 to " + std::to_string(RTC_BUILD_MAX_PRIMITIVES_PER_LEAF));
+  require(min_leaf >= 1 && min_leaf <= max_leaf, "bvh: min_leaf must be 1 to max_leaf");
   require(prims.size() < static_cast<size_t>(std::numeric_limits<int32_t>::max()), "bvh: too many primitives");
   Flat flat;
   flat.depth = 1;
@@ -136,7 +137,7 @@ Flat build(const std::vector<Bounds>& prims, int max_leaf) {
   args.maxBranchingFactor = 2;
   // Embree refuses to go deeper than this; the flattener reports our own limit first.
   args.maxDepth = 2 * ARCUS_BVH_MAX_DEPTH;
-  args.minLeafSize = 1;
+  args.minLeafSize = static_cast<unsigned>(min_leaf);
   args.maxLeafSize = static_cast<unsigned>(max_leaf);
   args.traversalCost = 1.0f;
   args.intersectionCost = 1.0f;

@@ -35,10 +35,12 @@ struct Flat {
 };
 
 // SAH BVH over `prims` (finite, within ±kMaxCoordinate, lo <= hi; zero-size boxes allowed) with at most
-// `max_leaf` (1..32) primitives per leaf.  Node boxes are the exact double union of
+// `max_leaf` (1..32) primitives per leaf, and at least `min_leaf` (1..max_leaf) where a
+// node has that many: larger leaves mean fewer nodes to visit where a search looks at
+// every primitive near a point anyway (the photon map's).  Node boxes are the exact double union of
 // their primitives' boxes.  A tree deeper than ARCUS_BVH_MAX_DEPTH levels (which the
 // kernels' fixed stacks could not traverse) is ARCUS_ERROR_INVALID_ARGUMENT.
-Flat build(const std::vector<Bounds>& prims, int max_leaf = 4);
+Flat build(const std::vector<Bounds>& prims, int max_leaf = 4, int min_leaf = 1);
 
 // The nodes in float for the float kernels, boxes rounded outwards so that they still
 // contain everything the double boxes did.

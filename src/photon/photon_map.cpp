@@ -125,7 +125,7 @@ KernelCall batch_kernel(arcus_context_t* ctx, const PhotonMap& map, const Batch&
 
 }  // namespace
 
-PhotonMap::PhotonMap(arcus_context_t* ctx, const Photons& in) : runtime_(ctx->runtime.get()) {
+PhotonMap::PhotonMap(arcus_context_t* ctx, const Photons& in, int min_leaf) : runtime_(ctx->runtime.get()) {
   const int ch = in.channels;
   require(ch >= 1 && ch <= ARCUS_PHOTON_CHANNELS, "photon map: channels = " + std::to_string(ch) + " is outside 1.." +
                                                       std::to_string(ARCUS_PHOTON_CHANNELS) +
@@ -172,7 +172,7 @@ PhotonMap::PhotonMap(arcus_context_t* ctx, const Photons& in) : runtime_(ctx->ru
                           "a photon map of " + std::to_string(n) + " photons");
 
   // The builder refuses trees deeper than the kernels' stack (ARCUS_BVH_MAX_DEPTH).
-  bvh::Flat tree = bvh::build(bounds);
+  bvh::Flat tree = bvh::build(bounds, std::max(4, min_leaf), min_leaf);
   depth_ = tree.depth;
   order_ = std::move(tree.order);
 

@@ -30,7 +30,9 @@ class PhotonMap {
  public:
   // Checks the photons (INVALID_ARGUMENT naming the first bad one), builds the BVH and
   // uploads nodes and photons (OUT_OF_MEMORY, checked first, when they do not fit).
-  PhotonMap(arcus_context_t* ctx, const Photons& photons);
+  // Leaves hold up to max(4, min_leaf) photons, and at least min_leaf (1..32) where a
+  // node has that many: a search visits fewer nodes and scans more photons with larger.
+  PhotonMap(arcus_context_t* ctx, const Photons& photons, int min_leaf = 1);
 
   size_t size() const { return order_.size(); }
   int channels() const { return desc_.channels; }

@@ -141,10 +141,16 @@ TEST(PhotonMap, NearestNeighboursAreTheBruteForceOnes) {
   const PhotonMap map(ctx, p);
   EXPECT_EQ(map.size(), 20000u);
   EXPECT_EQ(map.bytes(), static_cast<size_t>(map.nodes()->bytes() + 20000 * (6 + 3) * sizeof(double)));
-  for (int k : {1, 8, 300}) {
+  // Unbounded searches fill the search's arrays (ARCUS_PHOTON_SEARCH_CAPACITY) and cut
+  // them down to k on the way (photon_map.h); k = ARCUS_PHOTON_MAX_K, half of them, fills
+  // them again soonest after each cut.
+  for (int k : {1, 8, 300, 512}) {
     check_against_brute_force(ctx, p, map, k, INFINITY, Mode::volume);
     check_against_brute_force(ctx, p, map, k, INFINITY, Mode::surface);
   }
+  // Leaves of at least 16 photons (the ocean's per-step estimate): the same neighbours.
+  const PhotonMap wide(ctx, p, 16);
+  check_against_brute_force(ctx, p, wide, 250, INFINITY, Mode::volume);
   // A radius cap that leaves many queries with fewer than k photons.
   check_against_brute_force(ctx, p, map, 300, 0.05, Mode::volume);
   check_against_brute_force(ctx, p, map, 8, 0.02, Mode::surface);
