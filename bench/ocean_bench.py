@@ -117,7 +117,7 @@ def bench_trace(ctx, doc, plan):
 # ---- 2. images --------------------------------------------------------------------------
 
 def render(ctx, scene_path, doc, *, size, photons=None, k=None, steps=None, estimator=None, seed, progress=None,
-           thesis=True):
+           thesis=True, subsample=None):
     """Renders ``doc`` (the scene read from ``scene_path``) with these settings (None: the
     scene's); returns (OceanImage, wall seconds).  ``thesis``: photons of one wavelength,
     the estimate at every pixel, as the thesis' estimators were compared (§5.3)."""
@@ -129,7 +129,7 @@ def render(ctx, scene_path, doc, *, size, photons=None, k=None, steps=None, esti
     ph["seed"] = int(seed)
     march = d["view"].setdefault("march", {})
     for group, key, value in ((ph, "count", photons), (march, "k", k), (march, "steps", steps),
-                              (march, "estimator", estimator)):
+                              (march, "estimator", estimator), (march, "step_subsample", subsample)):
         if value is not None:
             group[key] = value
     t0 = time.perf_counter()
@@ -213,6 +213,22 @@ def bench_images(ctx, scene_path, doc, plan):
             "error %.4f spectral, %.4f sRGB" % (i + 1, len(configs), est, n, k, st, row["trace_s"], row["map_s"],
                                                row["estimate_s"], row["total_s"], row["err_spectral"],
                                                row["err_srgb"]))
+    # the per-step estimate at one step of every m, beside the every-step image of the
+    # same photons: its error, and how far it is from the every-step image (its own noise)
+    n, k, st = plan["per_step_photons"][-1], max(plan["per_step_k"]), plan["per_step_steps"][0]
+    every = None
+    for m in plan.get("per_step_subsample", ()):
+        if every is None:
+            every, _ = render(ctx, scene_path, doc, size=size, photons=n, k=k, steps=st, estimator="per_step",
+                              seed=SWEEP_SEED)
+        img, wall = render(ctx, scene_path, doc, size=size, photons=n, k=k, steps=st, estimator="per_step",
+                           seed=SWEEP_SEED, subsample=m)
+        row = image_row("subsample", "per_step", size, n, k, st, SWEEP_SEED, img, wall, ref)
+        row.update(subsample=m, err_every_spectral=rel_rms(img.spectral, every.spectral),
+                   err_every_srgb=rel_rms(img.image, every.image))
+        rows.append(row)
+        log("  per-step, one step of every %d: total %.2f s, error %.4f spectral (%.4f from every step)"
+            % (m, row["total_s"], row["err_spectral"], row["err_every_spectral"]))
     return rows, noise
 
 
@@ -312,7 +328,8 @@ def main(argv=None):
 
     md, csv_path, png = (os.path.join(args.out, n) for n in ("ocean.md", "ocean.csv", "ocean_error_vs_time.png"))
     write_csv(csv_path, trace_rows + image_rows + full)
-    write_md(md, m, args, plan, trace_rows, ref, noise, sweep, full, eq, eq_full, elapsed, (load0, load1))
+    write_md(md, m, args, plan, trace_rows, ref, noise, sweep, full, eq, eq_full, elapsed, (load0, load1),
+             [r for r in image_rows if r["kind"] == "subsample"])
     write_plot(png, sweep, ref, noise, eq)
     log("")
     with open(md) as f:

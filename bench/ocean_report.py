@@ -23,6 +23,7 @@ FULL = dict(
     beam_photons=(100_000, 200_000, 400_000, 800_000), beam_k=(50, 100, 250), beam_steps=(200,),
     beam_extra_steps=(50, 100),      # at (400 000, 250): what the march steps cost and buy
     per_step_photons=(100_000, 400_000), per_step_k=(50, 250), per_step_steps=(200,),
+    per_step_subsample=(4, 16),      # at the most photons and k: one step of every m (march.step_subsample)
     full_res=True,
     # at 512×384: the reference for the errors there, and the beam's extra photon counts
     full_ref_photons=2_000_000, full_beam_photons=(800_000,),
@@ -35,6 +36,7 @@ QUICK = dict(
     beam_photons=(10_000, 20_000, 40_000), beam_k=(25, 100), beam_steps=(100,),
     beam_extra_steps=(50,),
     per_step_photons=(10_000, 40_000), per_step_k=(25,), per_step_steps=(100,),
+    per_step_subsample=(4,),
     full_res=False,
 )
 THESIS = dict(size=(512, 384), photons=400_000, k=250, steps=200)   # the image settings of the thesis
@@ -180,7 +182,7 @@ def equal_error_row(eq, size, note=""):
         size[0], size[1], note, meas, res)
 
 
-def write_md(path, m, args, plan, trace_rows, ref, noise, sweep, full, eq, eq_full, elapsed, loads):
+def write_md(path, m, args, plan, trace_rows, ref, noise, sweep, full, eq, eq_full, elapsed, loads, subsampled=()):
     L = []
     add = L.append
     add("# ocean_bench — what accuracy costs in time%s" % (" (--quick: a smoke test, not numbers to report)"
@@ -297,6 +299,22 @@ def write_md(path, m, args, plan, trace_rows, ref, noise, sweep, full, eq, eq_fu
                "%.4f / %.4f" % (b["err_spectral"], b["err_srgb"]) if b else "—", fmt(p and p["total_s"]),
                "%.4f / %.4f" % (p["err_spectral"], p["err_srgb"]) if p else "not run",
                "%.1f×" % (p["total_s"] / b["total_s"]) if (p and b) else "—"))
+    if subsampled:
+        n, k, st = subsampled[0]["photons"], subsampled[0]["k"], subsampled[0]["steps"]
+        every = next((r for r in sweep if r["estimator"] == "per_step" and (r["photons"], r["k"], r["steps"]) == (n, k, st)),
+                     None)
+        add("")
+        add("### Per-step with step subsampling (%s photons, k = %d, %d steps)" % (fmt_count(n), k, st))
+        add("")
+        add("`march.step_subsample` m: the estimate at one step of every m, jittered per pixel, weighted by m "
+            "(unbiased); the same photons as the sweep's every-step image.")
+        add("")
+        add("| m | total [s] | error spectral / sRGB | vs every step: spectral / sRGB |")
+        add("|---|---|---|---|")
+        for r in ([every] if every else []) + list(subsampled):
+            add("| %d | %s | %.4f / %.4f | %s |" % (r.get("subsample", 1), fmt(r["total_s"]), r["err_spectral"], r["err_srgb"],
+                                                 "%.4f / %.4f" % (r["err_every_spectral"], r["err_every_srgb"])
+                                                 if "err_every_spectral" in r else "—"))
     add("")
     add("### Every image: stages")
     add("")
@@ -308,7 +326,7 @@ def write_md(path, m, args, plan, trace_rows, ref, noise, sweep, full, eq, eq_fu
     add("| kind | estimator | size | photons | k | steps | seed | trace | map | estimate | total | wall | lib est | "
         "kernel | stored | error spectral | error sRGB |")
     add("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
-    for r in [ref] + noise["rows"] + sweep + full:
+    for r in [ref] + noise["rows"] + sweep + list(subsampled) + full:
         add("| %s | %s | %d×%d | %s | %d | %d | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %d | %s | %s |"
             % (r["kind"] + (" (cancelled)" if r.get("cancelled") else ""), r["estimator"], r["width"], r["height"],
                fmt_count(r["photons"]), r["k"], r["steps"], r["seed"], r["trace_s"], r["map_s"], r["estimate_s"],

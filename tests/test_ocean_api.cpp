@@ -62,6 +62,7 @@ TEST(OceanApi, DefaultsAreTheThesis) {
   EXPECT_EQ(m.k, 250u);
   EXPECT_EQ(m.estimate_stride, 1u);  // the thesis': every pixel
   EXPECT_EQ(m.photon_tile, 0.0);     // photons through the lights' discs
+  EXPECT_EQ(m.step_subsample, 1u);   // the per-step estimate at every step
   arcus_ocean_setup s;
   ASSERT_EQ(arcus_ocean_setup_init(&s), ARCUS_SUCCESS);
   EXPECT_EQ(s.grid.first_nm, 380);

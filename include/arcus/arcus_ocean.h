@@ -227,6 +227,9 @@ typedef struct arcus_ocean_march {
                                * enter through one square tile this wide about the camera,
                                * standing for every copy of it (beam estimate only).
                                * 0 (default): through the lights' discs */
+  uint32_t step_subsample;    /* m: the per-step estimate at one step of every m, jittered
+                               * per pixel and weighted by m: unbiased, m× fewer searches,
+                               * noisier.  1 (default): every step, the thesis' */
 } arcus_ocean_march;
 ARCUS_API arcus_status arcus_ocean_march_init(arcus_ocean_march* march);
 

@@ -193,6 +193,8 @@ ARCUS_DECLARE_OCEAN_DESC(arcus_ocean_desc, arcus_ocean_phases, double, int32_t, 
     I sky_rows, sky_cosines;   /* the sky tables (0 rows: no sky)                            */   \
     I surface;                 /* 1: the flat sea surface at z = 0 reflects every ray
                                 * reaching it (Fresnel; beyond Snell's window, wholly)      */   \
+    I subsample;               /* per step: the estimate at one jittered step of every so many */ \
+    I seed;                    /* the jitter's (the photons' seed)                           */   \
   } NAME
 
 /* A stored photon in the map's power channels: its event, then per carried wavelength

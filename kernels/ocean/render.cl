@@ -229,7 +229,8 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
 #ifndef ARCUS_USE_OCEAN_BEAM
   REAL d2[ARCUS_PHOTON_SEARCH_CAPACITY];
   int slot[ARCUS_PHOTON_SEARCH_CAPACITY];
-  REAL bound = (REAL)INFINITY; /* the k-th nearest distance at the last step + Δt */
+  REAL r_last = (REAL)INFINITY; /* the k-th nearest distance at the last estimate (∞: unknown) */
+  int last = 0, chosen = 0, block = 1; /* the last estimate's step; this block's jittered step, its steps */
 #endif
 #endif
 
@@ -305,16 +306,28 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
     }
 #ifdef ARCUS_USE_OCEAN_PHOTON_MAP
 #ifndef ARCUS_USE_OCEAN_BEAM
-    /* ---- multiple scattering: the k nearest photons (eq. 4.6) */
-    /* The last step's k photons lie within r_last + Δt of this point (triangle
-     * inequality), so that bound loses none of the k nearest and prunes the search. */
-    const int found = rd.multiple ? photon_knn(nodes, photons, map, x.x, x.y, x.z, RC(0), RC(0), RC(0), rd.k,
-                                               bound * bound, d2, slot)
-                                  : 0;
+    /* ---- multiple scattering: the k nearest photons (eq. 4.6), at every step, or with
+     * subsample m at one step of every block of m, uniform in it per pixel and block and
+     * weighted by the block's steps: its expectation is the sum over every step. */
+    if (s % rd.subsample == 0) {
+      block = min(rd.subsample, rd.steps - s);
+      chosen = s + (rd.subsample == 1 ? 0 : min((int)(arcus_rng_uniform_double((arcus_u64)rd.seed, (arcus_u64)pixel,
+                                                                                (arcus_u32)(s / rd.subsample)) *
+                                                      (REAL)block),
+                                                 block - 1));
+    }
+    /* The last estimate's k photons lie within r_last + (s − last) Δt of this point
+     * (triangle inequality; the mirror image past the surface only comes nearer), so
+     * that bound loses none of the k nearest and prunes the search. */
+    const REAL limit = r_last + (REAL)(s - last) * rd.step * RC(1.000001);
+    const int found = rd.multiple && s == chosen ? photon_knn(nodes, photons, map, x.x, x.y, x.z, RC(0), RC(0), RC(0),
+                                                              rd.k, limit * limit, d2, slot)
+                                                 : 0;
     if (found > 0) {
       const REAL r = sqrt(d2[0]);
-      bound = found == rd.k ? r + rd.step * RC(1.000001) : (REAL)INFINITY;
-      const REAL scale = rd.step * per_nm / (RC(4) / RC(3) * OCEAN_PI * r * r * r);
+      r_last = found == rd.k ? r : (REAL)INFINITY;
+      last = s;
+      const REAL scale = (REAL)block * rd.step * per_nm / (RC(4) / RC(3) * OCEAN_PI * r * r * r);
       for (int i = 0; i < found; ++i) {
         const int q = slot[i];
         const REAL mu = -(OCEAN_MAP(ARCUS_PHOTON_DIRECTION, q) * w.x + OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 1, q) * w.y +

@@ -207,6 +207,7 @@ ocean::MarchParams march_of(const arcus_ocean_march& s) {
   m.exposure = s.exposure;
   m.estimate_stride = static_cast<int>(std::min<uint32_t>(s.estimate_stride, 1u << 20));
   m.photon_tile = s.photon_tile;
+  m.step_subsample = static_cast<int>(std::min<uint32_t>(s.step_subsample, 1u << 30));
   return m;
 }
 
@@ -417,6 +418,7 @@ arcus_status arcus_ocean_march_init(arcus_ocean_march* march) {
     march->exposure = d.exposure;
     march->estimate_stride = static_cast<uint32_t>(d.estimate_stride);
     march->photon_tile = d.photon_tile;
+    march->step_subsample = static_cast<uint32_t>(d.step_subsample);
   });
 }
 

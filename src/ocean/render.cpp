@@ -104,6 +104,7 @@ const KernelSource& render_source() {
                                    [] {
                                      std::vector<const char*> files = photon::device_headers();
                                      files.push_back("common/fresnel.h");  // the surface's reflection
+                                     files.push_back("common/philox.h");   // step subsampling's jitter
                                      files.push_back("ocean/ocean_desc.h");
                                      files.push_back("ocean/render.cl");
                                      return files;
@@ -240,6 +241,11 @@ void check_march(const MarchParams& m) {
   // The per-step estimate's k nearest would miss the photons across the tile's edges.
   require(m.photon_tile == 0 || m.estimator == MarchParams::beam,
           "march.photon_tile: folds photons for the beam estimate only (march.estimator)");
+  require(m.step_subsample >= 1 && m.step_subsample <= m.steps,
+          "march.step_subsample: must be in 1..march.steps (" + std::to_string(m.steps) + "), got " +
+              std::to_string(m.step_subsample));
+  require(m.step_subsample == 1 || m.estimator == MarchParams::per_step,
+          "march.step_subsample: subsamples the per-step estimate only (march.estimator)");
 }
 
 arcus_features render_features(const WaterTables& water, const MarchParams& march) {
@@ -393,6 +399,8 @@ std::unique_ptr<RenderJob> render(arcus_context_t* ctx, const WaterTables& w, co
   d.tile = march.photon_tile;
   d.tile_x = camera.position[0];
   d.tile_y = camera.position[1];
+  d.subsample = march.step_subsample;
+  d.seed = static_cast<int32_t>(trace_params.seed & 0x7fffffff);
   d.image_width = d.width;
   d.image_height = d.height;
 

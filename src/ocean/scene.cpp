@@ -283,7 +283,7 @@ void parse_profile(const Node& n, TraceParams* p) {
 
 MarchParams parse_march(const Node& n) {
   n.expect_object({"steps", "distance", "k", "estimator", "single_scattering", "multiple_scattering", "estimate_stride",
-                   "photon_tile", "exposure"});
+                   "photon_tile", "step_subsample", "exposure"});
   MarchParams m;
   if (auto v = n.find("steps")) {
     m.steps = static_cast<int>(v->integer(1000000));
@@ -303,6 +303,10 @@ MarchParams parse_march(const Node& n) {
     if (m.estimate_stride < 1) v->fail("expected at least 1 pixel");
   }
   if (auto v = n.find("photon_tile")) m.photon_tile = v->number();
+  if (auto v = n.find("step_subsample")) {
+    m.step_subsample = static_cast<int>(v->integer(1000000));
+    if (m.step_subsample < 1) v->fail("expected at least 1 step");
+  }
   if (auto v = n.find("exposure")) m.exposure = positive(*v);
   return m;
 }

@@ -31,6 +31,10 @@ struct MarchParams {
   // about the camera and stand for every copy of it across the plane: the beam estimate
   // folds each ray into the tile (render.cl).  0: they enter through the lights' discs.
   double photon_tile = 0;
+  // The per-step estimate at one step of every step_subsample, jittered per pixel and
+  // block and weighted by the block's steps: an unbiased estimate of the sum over every
+  // step with that many times fewer searches, and more noise (1: every step).
+  int step_subsample = 1;
   double exposure = 1;              // PNG: linear sRGB × exposure before encoding
 };
 

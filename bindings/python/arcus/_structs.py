@@ -209,6 +209,7 @@ class OceanMarchStruct(ctypes.Structure):
         ("exposure", c_double),
         ("estimate_stride", c_uint32),
         ("photon_tile", c_double),
+        ("step_subsample", c_uint32),
     ]
 
 
