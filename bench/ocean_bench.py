@@ -269,7 +269,7 @@ def bench_full_res(ctx, scene_path, doc, cap_s, plan):
                    row["err_spectral"]))
         rows.append(row)
     # the bundled scene's own settings (more photons, each of several wavelengths, the
-    # estimate at every fourth pixel: docs/benchmarks.md, "the issue-22 target")
+    # estimate at every fourth pixel: docs/benchmarks_ocean.md, "the issue-22 target")
     ph, march = doc["photons"], doc["view"]["march"]
     log("  %d×%d, the scene's settings: %d photons, k = %d, every %d pixels ..."
         % (size + (ph["count"], march["k"], march.get("estimate_stride", 1))))
