@@ -72,7 +72,6 @@ ARCUS_INLINE REAL ocean_photon_phase(const ocean_phases* p, __global const REAL*
 
 #define OCEAN_MAP(c, slot) PHOTON(photons, map, c, slot)
 
-
 /* The sky tables' column below a ray's vertical cosine wz (*c0) and its weight toward
  * the next (*ct): the tables run over cosines −1 … 1. */
 ARCUS_INLINE void ocean_sky_column(REAL wz, int cosines, int* c0, REAL* ct) {
