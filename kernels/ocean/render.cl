@@ -11,7 +11,10 @@
  *
  * Two estimates of the multiple scattering:
  *   per step (the thesis'): the k nearest photons of each march point,
- *     Σ p Φ / (4/3 π r_k³);
+ *     Σ p Φ / (4/3 π r_k³), each step's k-set updated from the last one's from a pool
+ *     of the photons about a stretch of the ray (photon/photon_line.h), and with it
+ *     the sums Σ p Φ: the ray's direction, so each photon's phase weight, is fixed
+ *     along a straight leg;
  *   beam (ARCUS_USE_OCEAN_BEAM; Jarosz, Zwicker & Jensen 2008): every photon whose
  *     sphere of radius r_i (its own k-nearest distance) the ray passes through,
  *     Σ p Φ T(t_i) / (π r_i²), found in one BVH traversal per ray.
@@ -28,7 +31,7 @@
  * spectrum of hundreds of samples does not fit in private memory.
  *
  * Host prepends: common/real.h, bvh/bvh_desc.h, photon/photon_desc.h,
- * photon/photon_map.h, ocean/ocean_desc.h.                                        */
+ * photon/photon_map.h, photon/photon_line.h, ocean/ocean_desc.h.                  */
 
 /* Scatterer s's phase function at cos θ = mu (thesis eq. 3.26, 3.28–3.29), per sr. */
 ARCUS_INLINE REAL ocean_hg_value(REAL g, REAL mu) {
@@ -72,6 +75,23 @@ ARCUS_INLINE REAL ocean_photon_phase(const ocean_phases* p, __global const REAL*
 
 #define OCEAN_MAP(c, slot) PHOTON(photons, map, c, slot)
 
+/* The stored photon q's phase weight toward the camera, the ray running along w. */
+ARCUS_INLINE REAL ocean_photon_toward(const ocean_phases* p, __global const REAL* optics, __global const REAL* photons,
+                                      const photon_map_desc map, int q, REAL3 w) {
+  const REAL mu = -(OCEAN_MAP(ARCUS_PHOTON_DIRECTION, q) * w.x + OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 1, q) * w.y +
+                    OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 2, q) * w.z);
+  return ocean_photon_phase(p, optics, (int)OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_EVENT, q), mu);
+}
+
+/* Adds weight × the power of each wavelength photon q carries into sums[its grid sample]. */
+ARCUS_INLINE void ocean_photon_add(__global const REAL* photons, const photon_map_desc map, int q, REAL weight,
+                                   __global REAL* sums) {
+  for (int j = 0; j < ARCUS_OCEAN_MAX_HEROES; ++j) {
+    const REAL power = OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_POWER + j, q);
+    if (power != RC(0)) sums[(int)OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_BIN + j, q)] += weight * power;
+  }
+}
+
 /* The sky tables' column below a ray's vertical cosine wz (*c0) and its weight toward
  * the next (*ct): the tables run over cosines −1 … 1. */
 ARCUS_INLINE void ocean_sky_column(REAL wz, int cosines, int* c0, REAL* ct) {
@@ -108,10 +128,7 @@ ARCUS_INLINE void ocean_beam_piece(__global const bvh_node* nodes, __global cons
           if (tc < t0 || tc >= t1) continue;
           const REAL off2 = dot(v, v) - tc * tc;
           if (off2 >= r * r) continue;
-          const REAL mu = -(OCEAN_MAP(ARCUS_PHOTON_DIRECTION, q) * w.x + OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 1, q) * w.y +
-                            OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 2, q) * w.z);
-          const REAL p = ocean_photon_phase(phases, optics, (int)OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_EVENT, q), mu) *
-                         weight / (OCEAN_PI * r * r);
+          const REAL p = ocean_photon_toward(phases, optics, photons, map, q, w) * weight / (OCEAN_PI * r * r);
           for (int j = 0; j < ARCUS_OCEAN_MAX_HEROES; ++j) { /* the wavelengths it carries */
             const REAL power = OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_POWER + j, q);
             if (power == RC(0)) continue;
@@ -186,7 +203,7 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
   if (pixel >= rd.end_pixel) return;
   const int n = rd.count;
   __global REAL* out = radiance + (size_t)pixel * (size_t)n;
-  __global REAL* T = scratch + (size_t)(pixel - rd.first_pixel) * (size_t)n;
+  __global REAL* T = scratch + (size_t)(pixel - rd.first_pixel) * (size_t)(2 * n); /* then the k-set's sums */
   __global const REAL* sigma_t = optics;
   __global const REAL* step_factor = optics + n;
   __global const REAL* sigma_s = optics + 3 * n;
@@ -230,6 +247,11 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
   int slot[ARCUS_PHOTON_SEARCH_CAPACITY];
   REAL r_last = (REAL)INFINITY; /* the k-th nearest distance at the last estimate (∞: unknown) */
   int last = 0, chosen = 0, block = 1; /* the last estimate's step; this block's jittered step, its steps */
+  /* The photons about a stretch of the ray (photon/photon_line.h) and the sums over the
+   * k-set, Σ p Φ per grid sample, beside the transmittances. */
+  photon_line line;
+  line.count = -1;
+  __global REAL* S = T + n;
 #endif
 #endif
 
@@ -242,6 +264,9 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
         reflected = 1;
         w = mirrored;
         for (int m = 0; m < n; ++m) T[m] *= reflectance;
+#if defined(ARCUS_USE_OCEAN_PHOTON_MAP) && !defined(ARCUS_USE_OCEAN_BEAM)
+        line.count = -1; /* its photons' phase weights were toward the straight ray */
+#endif
         ocean_sky_column(w.z, rd.sky_cosines, &sky_c0, &sky_ct);
       }
     }
@@ -317,27 +342,41 @@ __kernel void arcus_ocean_render(ARCUS_PARAMS(ARCUS_OCEAN_RENDER_ARGS)) {
     }
     /* The last estimate's k photons lie within r_last + (s − last) Δt of this point
      * (triangle inequality; the mirror image past the surface only comes nearer), so
-     * that bound loses none of the k nearest and prunes the search. */
-    const REAL limit = r_last + (REAL)(s - last) * rd.step * RC(1.000001);
-    const int found = rd.multiple && s == chosen ? photon_knn(nodes, photons, map, x.x, x.y, x.z, RC(0), RC(0), RC(0),
-                                                              rd.k, limit * limit, d2, slot)
-                                                 : 0;
-    if (found > 0) {
-      const REAL r = sqrt(d2[0]);
-      r_last = found == rd.k ? r : (REAL)INFINITY;
-      last = s;
-      const REAL scale = (REAL)block * rd.step * per_nm / (RC(4) / RC(3) * OCEAN_PI * r * r * r);
-      for (int i = 0; i < found; ++i) {
-        const int q = slot[i];
-        const REAL mu = -(OCEAN_MAP(ARCUS_PHOTON_DIRECTION, q) * w.x + OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 1, q) * w.y +
-                          OCEAN_MAP(ARCUS_PHOTON_DIRECTION + 2, q) * w.z);
-        const REAL p = ocean_photon_phase(phases, optics, (int)OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_EVENT, q), mu);
-        for (int j = 0; j < ARCUS_OCEAN_MAX_HEROES; ++j) { /* the wavelengths it carries */
-          const REAL power = OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_POWER + j, q);
-          if (power == RC(0)) continue;
-          const int b = (int)OCEAN_MAP(ARCUS_PHOTON_POWER + ARCUS_OCEAN_MAP_BIN + j, q);
-          out[b] += T[b] * p * power * scale;
+     * that bound loses none of the k nearest: it bounds the stretch's pool's reach and
+     * prunes a lone search. */
+    if (rd.multiple && s == chosen) {
+      const REAL g = (REAL)(s - last) * rd.step * RC(1.000001);
+      /* From the stretch's pool when the estimates are a step apart; subsampled, they
+       * lie too far apart for it to pay (m = 2: 1.3× slower with it), and each searches
+       * alone. */
+      int changes = 0, fresh = 0;
+      REAL r = rd.subsample == 1 ? photon_line_query(nodes, photons, map, &line, x.x, x.y, x.z, w.x, w.y, w.z,
+                                                     (REAL)(rd.steps - 1 - s) * rd.step, rd.k, r_last, g, d2, slot,
+                                                     &changes, &fresh)
+                                 : RC(-1);
+      if (fresh || r < RC(0))
+        for (int m = 0; m < n; ++m) S[m] = RC(0);
+      if (r >= RC(0)) { /* the stretch's k-set, updated, and its sums */
+        for (int c = 0; c < changes; ++c) {
+          const int i = abs(slot[c]) - 1;
+          if (isnan(line.weight[i])) line.weight[i] = ocean_photon_toward(phases, optics, photons, map, line.slot[i], w);
+          ocean_photon_add(photons, map, line.slot[i], slot[c] > 0 ? line.weight[i] : -line.weight[i], S);
         }
+        r_last = r;
+      } else { /* a lone search */
+        const REAL limit = r_last + g;
+        const int found = photon_knn(nodes, photons, map, x.x, x.y, x.z, RC(0), RC(0), RC(0), rd.k, limit * limit, d2, slot);
+        for (int i = 0; i < found; ++i)
+          ocean_photon_add(photons, map, slot[i], ocean_photon_toward(phases, optics, photons, map, slot[i], w), S);
+        if (found > 0) {
+          r = sqrt(d2[0]);
+          r_last = found == rd.k ? r : (REAL)INFINITY;
+        }
+      }
+      if (r >= RC(0)) {
+        last = s;
+        const REAL f = (REAL)block * rd.step * per_nm / (RC(4) / RC(3) * OCEAN_PI * r * r * r);
+        for (int m = 0; m < n; ++m) out[m] += T[m] * fmax(S[m], RC(0)) * f; /* the sums' rounding kept ≥ 0 */
       }
     }
 #endif

@@ -14,7 +14,7 @@ namespace arcus::photon {
 namespace {
 
 const std::vector<const char*> kHeaders{"common/real.h", "bvh/bvh_desc.h", "photon/photon_desc.h",
-                                        "photon/photon_map.h"};
+                                        "photon/photon_map.h", "photon/photon_line.h"};
 
 const KernelSource& source() {
   static const KernelSource s{"photon/photon_kernels",
@@ -247,6 +247,42 @@ Neighbours nearest(arcus_context_t* ctx, const PhotonMap& map, const std::vector
     r.distance[j] = std::sqrt(r.distance[j]);
   }
   return r;
+}
+
+LineMarch march_lines(arcus_context_t* ctx, const PhotonMap& map, const std::vector<double>& starts,
+                      const std::vector<double>& directions, int steps, double step, int k) {
+  require(starts.size() % 3 == 0 && directions.size() == starts.size(),
+          "photon line march: a start and a direction (three numbers each) per line");
+  require(steps >= 1 && std::isfinite(step) && step > 0, "photon line march: steps >= 1 and a step > 0");
+  Query q;
+  q.k = k;
+  q.mode = Mode::surface;  // the lines' directions travel as the normals of surface queries, normalised
+  const size_t per_line = static_cast<size_t>(steps) * (4 * sizeof(double) + 2 * sizeof(int64_t)) + 4;
+  const Batch b = upload_queries(ctx, map, starts, directions, q, static_cast<double>(per_line));
+  LineMarch m;
+  const size_t e = b.count * static_cast<size_t>(steps);
+  m.points.resize(3 * e);
+  m.radius.resize(e);
+  m.digest.resize(2 * e);
+  m.lone.resize(b.count);
+  if (b.count == 0) return m;
+  DeviceBuffer points(ctx, m.points.size() * sizeof(double), "the lines' points");
+  DeviceBuffer radius(ctx, e * sizeof(double), "the lines' k-th distances");
+  DeviceBuffer digest(ctx, m.digest.size() * sizeof(int64_t), "the lines' k-sets");
+  DeviceBuffer lone(ctx, b.count * sizeof(int32_t), "the lines' lone searches");
+  KernelCall call = batch_kernel(ctx, map, b, "arcus_photon_line_march");
+  call.set_value(5, int32_t(steps));
+  call.set_value(6, step);
+  call.set(7, &points);
+  call.set(8, &radius);
+  call.set(9, &digest);
+  call.set(10, &lone);
+  call.run(ctx, b.count);
+  points.read(ctx, 0, points.bytes(), m.points.data());
+  radius.read(ctx, 0, radius.bytes(), m.radius.data());
+  digest.read(ctx, 0, digest.bytes(), m.digest.data());
+  lone.read(ctx, 0, lone.bytes(), m.lone.data());
+  return m;
 }
 
 const std::vector<const char*>& device_headers() { return kHeaders; }

@@ -91,8 +91,22 @@ struct Neighbours {
 Neighbours nearest(arcus_context_t* ctx, const PhotonMap& map, const std::vector<double>& points,
                    const std::vector<double>& normals, const Query& query);
 
-// For other engines' kernels: the files to put before a kernel that calls photon_knn or
-// photon_estimate (in this order), and the map's three arguments set at first,
+// The k nearest photons at `steps` points `step` apart along each line (starts and
+// unit directions: x y z per line), found as a ray march finds them
+// (kernels/photon/photon_line.h): per line i and step j, at e = i·steps + j, the point
+// searched from (points[3e..]), the k-th distance (the farthest found when fewer) and
+// the set found as the sum of its slots and of their squares (digest[2e], [2e + 1]);
+// lone[i]: the steps searched alone, without the line's pool.
+struct LineMarch {
+  std::vector<double> points, radius;
+  std::vector<int64_t> digest;
+  std::vector<int32_t> lone;
+};
+LineMarch march_lines(arcus_context_t* ctx, const PhotonMap& map, const std::vector<double>& starts,
+                      const std::vector<double>& directions, int steps, double step, int k);
+
+// For other engines' kernels: the files to put before a kernel that calls photon_knn,
+// photon_estimate or photon_line_query (in this order), and the map's three arguments set at first,
 // first + 1, first + 2: (__global const bvh_node* nodes, __global const REAL* photons,
 // const photon_map_desc map).
 const std::vector<const char*>& device_headers();

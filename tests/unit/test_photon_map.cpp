@@ -253,6 +253,74 @@ TEST(PhotonMap, QueryFarOutside) {
   EXPECT_EQ(e.values, std::vector<double>(3, 0.0));
 }
 
+// The k nearest photons along lines, found as the ocean's per-step estimate marches
+// (photon_line.h: a pool of the photons about a stretch, each step's set updated from
+// the last): at every step the brute-force set (compared as the sums of its slots and
+// of their squares) and k-th distance.  *lone: the steps searched without the pool.
+void check_march(arcus_context_t* ctx, const Photons& p, const PhotonMap& map, int k, int steps, double step,
+                 int* lone) {
+  std::vector<double> starts, dirs;
+  const size_t lines = 10;
+  for (size_t i = 0; i < lines; ++i) {
+    for (uint32_t a = 0; a < 3; ++a) starts.push_back(-0.1 + 1.2 * u01(91, i, a));
+    const double z = 2 * u01(91, i, 3) - 1, phi = 2 * kPi * u01(91, i, 4), s = std::sqrt(1 - z * z);
+    if (i == 0) dirs.insert(dirs.end(), {1, 0, 0});  // along an axis: no crossing of the other two
+    else if (i == 1) dirs.insert(dirs.end(), {0, -1, 1});
+    else dirs.insert(dirs.end(), {s * std::cos(phi), s * std::sin(phi), z});
+  }
+  const arcus::photon::LineMarch m = arcus::photon::march_lines(ctx, map, starts, dirs, steps, step, k);
+  std::vector<int64_t> slot_of(map.size());
+  for (size_t s = 0; s < map.size(); ++s) slot_of[map.order()[s]] = static_cast<int64_t>(s);
+  for (size_t e = 0; e < m.radius.size(); ++e) {
+    const Brute b = brute_knn(p, &m.points[3 * e], nullptr, k, INFINITY);
+    int64_t sum = 0, sum2 = 0;
+    for (int64_t i : b.index) sum += slot_of[i], sum2 += slot_of[i] * slot_of[i];
+    const std::string at = "k = " + std::to_string(k) + ", line " + std::to_string(e / steps) + ", step " +
+                           std::to_string(e % steps);
+    ASSERT_EQ(m.digest[2 * e], sum) << at;
+    ASSERT_EQ(m.digest[2 * e + 1], sum2) << at;
+    expect_relative(m.radius[e], std::sqrt(b.d2.back()), 1e-12, at);
+  }
+  *lone = 0;
+  for (int32_t l : m.lone) *lone += l;
+}
+
+TEST(PhotonMap, MarchAlongLinesFindsTheBruteForceNeighbours) {
+  Context ctx;
+  // Uniform photons and a dense ball of them, so that r_k shrinks and grows along a line
+  // (and past the cube's faces) and stretches are gathered anew.
+  Photons p = random_photons(20000, 4);
+  const Photons ball = random_photons(6000, 5);
+  for (size_t i = 0; i < 6000; ++i)
+    for (int a = 0; a < 3; ++a) p.positions.push_back(0.45 + 0.1 * ball.positions[3 * i + a]);
+  p.directions.insert(p.directions.end(), ball.directions.begin(), ball.directions.end());
+  p.powers.insert(p.powers.end(), ball.powers.begin(), ball.powers.end());
+  const int steps = 70;
+  for (int min_leaf : {1, 32}) {
+    const PhotonMap map(ctx, p, min_leaf);
+    // Steps of 0.04 to 0.14 r_k in the uniform photons (r_k = 0.023, 0.079, 0.145, 0.184);
+    // several r_k in the ball, where points that far apart are searched alone
+    // (ARCUS_PHOTON_LINE_MOVE).
+    for (auto [k, step] : {std::pair{1, 0.003}, {40, 0.01}, {250, 0.02}, {512, 0.008}}) {
+      int lone = 0;
+      check_march(ctx, p, map, k, steps, step, &lone);
+      // The pool answers most steps.  Lone searches: each line's first (no r_k known yet),
+      // in the dense ball, and where a stretch's pool overflows entering it (24 to 66 of
+      // the 700 steps here).
+      EXPECT_LE(lone, 10 * steps * 15 / 100) << "k = " << k << ", min_leaf " << min_leaf;
+    }
+  }
+}
+
+TEST(PhotonMap, MarchWithFewerPhotonsThanK) {
+  Context ctx;
+  const Photons p = random_photons(5, 6);
+  const PhotonMap map(ctx, p);
+  int lone = 0;
+  check_march(ctx, p, map, 8, 12, 0.1, &lone);
+  EXPECT_EQ(lone, 10 * 12);  // no k-th: every step searches the whole map
+}
+
 // The k-nearest-neighbour density estimate of a Poisson process of intensity λ (per
 // area or volume): the measure (area π r_k² or volume 4/3 π r_k³) of the ball reaching
 // the k-th point, times λ, is Gamma(k, 1) distributed, so the estimate
