@@ -106,9 +106,9 @@ LineMarch march_lines(arcus_context_t* ctx, const PhotonMap& map, const std::vec
                       const std::vector<double>& directions, int steps, double step, int k);
 
 // For other engines' kernels: the files to put before a kernel that calls photon_knn,
-// photon_estimate or photon_line_query (in this order), and the map's three arguments set at first,
-// first + 1, first + 2: (__global const bvh_node* nodes, __global const REAL* photons,
-// const photon_map_desc map).
+// photon_estimate or photon_line_query (in this order), and the map's three arguments
+// set at first, first + 1, first + 2: (__global const bvh_node* nodes,
+// __global const REAL* photons, const photon_map_desc map).
 const std::vector<const char*>& device_headers();
 void set_map_arguments(KernelCall& call, unsigned first, const PhotonMap& map);
 
