@@ -222,31 +222,34 @@ ARCUS_INLINE REAL photon_line_step(photon_line* l, REAL x, REAL y, REAL z, int k
   const REAL last2 = r_last * r_last;
   int below = 0; /* the shell's photons nearer than r_last */
   for (int j = 0; j < n; ++j) below += d2[j] < last2;
-  const int more = need - below; /* the k-th: the more-th nearest beyond r_last, or (≤ 0) the (1 − more)-th farthest within */
+  /* the k-th: the more-th nearest beyond r_last, or (more ≤ 0) the (1 − more)-th
+   * farthest within */
+  const int more = need - below;
   if (!fresh && more > -ARCUS_PHOTON_LINE_RANK && more <= ARCUS_PHOTON_LINE_RANK) {
     /* r_k moves little from step to step: the k-th is a few places from r_last, found
-     * with a short sorted list instead of a selection over the whole shell */
+     * with a short sorted list instead of a selection over the whole shell.  Within,
+     * distance² and entry are negated, so that the list ascends either way. */
     const int beyond = more > 0, q = beyond ? more : 1 - more;
+    const REAL sign = beyond ? RC(1) : RC(-1);
     REAL best[ARCUS_PHOTON_LINE_RANK];
     int best_i[ARCUS_PHOTON_LINE_RANK];
     int m = 0;
     for (int j = 0; j < n; ++j) {
-      const REAL d = d2[j];
-      if ((d < last2) == beyond) continue;
-      const REAL key = beyond ? d : -d; /* the q smallest beyond, or the q largest within */
-      if (m == q && !(key < best[q - 1] || (key == best[q - 1] && (beyond ? idx[j] < best_i[q - 1] : idx[j] > best_i[q - 1]))))
-        continue;
+      if ((d2[j] < last2) == beyond) continue;
+      const REAL key = sign * d2[j];
+      const int key_i = beyond ? idx[j] : -idx[j];
+      if (m == q && !photon_after(best[q - 1], best_i[q - 1], key, key_i)) continue;
       int p = m < q ? m++ : q - 1;
-      for (; p > 0 && (best[p - 1] > key || (best[p - 1] == key && (beyond ? best_i[p - 1] > idx[j] : best_i[p - 1] < idx[j]))); --p) {
+      for (; p > 0 && photon_after(best[p - 1], best_i[p - 1], key, key_i); --p) {
         best[p] = best[p - 1];
         best_i[p] = best_i[p - 1];
       }
       best[p] = key;
-      best_i[p] = idx[j];
+      best_i[p] = key_i;
     }
     if (m < q) return RC(-1);
-    r2 = beyond ? best[q - 1] : -best[q - 1];
-    at = best_i[q - 1];
+    r2 = sign * best[q - 1];
+    at = beyond ? best_i[q - 1] : -best_i[q - 1];
   } else {
     photon_select(d2, idx, n, need - 1);
     r2 = d2[need - 1];
