@@ -12,6 +12,7 @@ debs=(
   build-essential cmake pkg-config git
   pocl-opencl-icd ocl-icd-opencl-dev ocl-icd-libopencl1 opencl-c-headers opencl-clhpp-headers clinfo
   libembree-dev libopenimageio-dev libopenmesh-dev libglfw3-dev nlohmann-json3-dev
+  libopencv-core-dev libopencv-imgproc-dev
   xvfb xauth libgl1-mesa-dri chromium python3-venv
   libgtest-dev googletest libboost-dev
   clang-14 libclang-rt-14-dev

@@ -321,6 +321,49 @@ ARCUS_API arcus_status arcus_job_get_translucency_sources(arcus_job_t* job, doub
  * pointer may be NULL. */
 ARCUS_API arcus_status arcus_job_get_translucency_sub_sources(arcus_job_t* job, double* points, double* weights);
 
+/* ---- light directions from the photograph alone (thesis §3.4; Lopez-Moreno et al. 2009)
+ * For an uncontrolled photograph, neither lights nor shape known.  The object is the
+ * matte's pixels, or else segmented from the photo (the object brighter than its
+ * background, which the photo's frame shows: above the frame's levels, the largest
+ * region, its small holes filled).
+ * At its contour the surface faces across the view, so the contour's luminance against
+ * its normals' image-plane azimuths shows the lights: k-means on the luminance-weighted
+ * normals gives each light's azimuth θ, and the number of lights is the fewest whose
+ * clamped-cosine model explains the contour (docs/translucency.md).  Each light's zenith
+ * φ is then fitted to the luminance gradients inside the object, with the normals of a
+ * globally convex stand-in (the contour's distance map, a sphere's profile).
+ * Angles in the camera's frame: x right, y up, z toward the camera. */
+#define ARCUS_MAX_DETECTED_LIGHTS 4
+
+typedef struct arcus_detected_light {
+  double azimuth_deg;        /* θ: in the image plane, counter-clockwise from +x, 0..360      */
+  double zenith_deg;         /* φ: from the camera's axis, 0 (from the camera's side) .. 90 (in the
+                                image plane)                                                 */
+  double direction[3];       /* the unit vector toward the light, (sinφ cosθ, sinφ sinθ, cosφ) */
+  double intensity;          /* relative: the lights' intensities sum to 1                   */
+  double azimuth_spread_deg; /* the angles whose fit's misfit stays within 5% of the best's:  */
+  double zenith_spread_deg;  /* half their range, an uncertainty from the data alone (the
+                                stand-in shape's own error is not in it)                     */
+} arcus_detected_light;
+
+typedef struct arcus_light_detection {
+  uint32_t count;            /* lights found, 1..ARCUS_MAX_DETECTED_LIGHTS                  */
+  arcus_detected_light lights[ARCUS_MAX_DETECTED_LIGHTS]; /* strongest first               */
+  uint32_t object_pixels;    /* the object's pixels                                        */
+  uint32_t contour_pixels;   /* its outer contour's                                        */
+  int32_t segmented;         /* 1: segmented from the photo; 0: the matte's                */
+  double contour_misfit;     /* the contour model's RMS residual over the contour's RMS     */
+  double seconds;
+} arcus_light_detection;
+
+/* Finds the lights of `photo` (width × height × 3 floats, linear RGB radiance, top row
+ * first); `matte` (width × height bytes, non-zero: the object) may be NULL.  Refused,
+ * naming the reason: a NaN, infinite or negative pixel; no object; an object touching the
+ * photo's border (its contour is cut); more than ARCUS_MAX_DETECTED_LIGHTS lights. */
+ARCUS_API arcus_status arcus_translucency_detect_lights(arcus_context_t* ctx, uint32_t width, uint32_t height,
+                                                        const float* photo, const uint8_t* matte,
+                                                        arcus_light_detection* result);
+
 /* ---- genetic inverse rendering (thesis §3.2, §5.1) ------------------------------------
  * The genes of a model whose render best matches a target image of a known mesh under
  * known directional lights and camera: per-pixel least squares in YCbCr (the thesis'

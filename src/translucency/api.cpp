@@ -14,6 +14,7 @@
 #include "translucency/estimate.h"
 #include "translucency/hermite.h"
 #include "translucency/inverse.h"
+#include "translucency/photo_lights.h"
 #include "translucency/render.h"
 
 using namespace arcus;
@@ -293,6 +294,17 @@ arcus_status arcus_translucency_estimate(arcus_context_t* ctx, arcus_mesh_t* mes
     if (!cancelled) return ARCUS_SUCCESS;
     *message = "the progress callback cancelled the estimate: the profile is incomplete";
     return ARCUS_ERROR_CANCELLED;
+  });
+}
+
+arcus_status arcus_translucency_detect_lights(arcus_context_t* ctx, uint32_t width, uint32_t height,
+                                              const float* photo, const uint8_t* matte,
+                                              arcus_light_detection* result) {
+  return on<arcus_context_s>(ctx, kContextHandle, "ctx", [&](arcus_context_s*, std::string*) {
+    require_pointer(result, "result");
+    require_pointer(photo, "photo");
+    *result = translucency::detect_lights(width, height, photo, matte);
+    return ARCUS_SUCCESS;
   });
 }
 

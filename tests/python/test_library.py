@@ -172,6 +172,14 @@ int main(void) {
   F(arcus_dipole_terms, diffuse_length) F(arcus_dipole_terms, z_r) F(arcus_dipole_terms, z_v)
   F(arcus_dipole_terms, total_reflectance) F(arcus_dipole_terms, diffusive) F(arcus_dipole_terms, f_dr)
   F(arcus_dipole_terms, a) F(arcus_dipole_terms, exit_transmittance)
+  printf("arcus_detected_light %zu\n", sizeof(arcus_detected_light));
+  F(arcus_detected_light, azimuth_deg) F(arcus_detected_light, zenith_deg) F(arcus_detected_light, direction)
+  F(arcus_detected_light, intensity) F(arcus_detected_light, azimuth_spread_deg)
+  F(arcus_detected_light, zenith_spread_deg)
+  printf("arcus_light_detection %zu\n", sizeof(arcus_light_detection));
+  F(arcus_light_detection, count) F(arcus_light_detection, lights) F(arcus_light_detection, object_pixels)
+  F(arcus_light_detection, contour_pixels) F(arcus_light_detection, segmented)
+  F(arcus_light_detection, contour_misfit) F(arcus_light_detection, seconds)
   printf("arcus_daylight_desc %zu\n", sizeof(arcus_daylight_desc));
   F(arcus_daylight_desc, site_height) F(arcus_daylight_desc, ozone_du) F(arcus_daylight_desc, aerosol_depth_500)
   F(arcus_daylight_desc, angstrom_exponent) F(arcus_daylight_desc, aerosol_scale_height) F(arcus_daylight_desc, co2_ppm)
@@ -196,6 +204,8 @@ STRUCTS = {
     "arcus_dipole_terms": _lib.DipoleTermsStruct,
     "arcus_daylight_desc": _lib.DaylightDescStruct,
     "arcus_optical_depths": _lib.OpticalDepthsStruct,
+    "arcus_detected_light": _lib.DetectedLightStruct,
+    "arcus_light_detection": _lib.LightDetectionStruct,
 }
 
 

@@ -471,6 +471,32 @@ class DipoleTermsStruct(ctypes.Structure):
 ERROR_CALLBACK = ctypes.CFUNCTYPE(None, c_void_p, c_int, c_char_p)
 
 
+class DetectedLightStruct(ctypes.Structure):
+    _fields_ = [
+        ("azimuth_deg", c_double),
+        ("zenith_deg", c_double),
+        ("direction", c_double * 3),
+        ("intensity", c_double),
+        ("azimuth_spread_deg", c_double),
+        ("zenith_spread_deg", c_double),
+    ]
+
+
+MAX_DETECTED_LIGHTS = 4  # ARCUS_MAX_DETECTED_LIGHTS
+
+
+class LightDetectionStruct(ctypes.Structure):
+    _fields_ = [
+        ("count", c_uint32),
+        ("lights", DetectedLightStruct * MAX_DETECTED_LIGHTS),
+        ("object_pixels", c_uint32),
+        ("contour_pixels", c_uint32),
+        ("segmented", c_int32),
+        ("contour_misfit", c_double),
+        ("seconds", c_double),
+    ]
+
+
 class TranslucencyEstimateResultStruct(ctypes.Structure):
     _fields_ = [
         ("width", c_uint32),

@@ -30,9 +30,11 @@ from ._args import to_choice, to_float, to_int, to_path, to_real_array, to_vec3
 from ._errors import ArgumentError
 from ._lib import lib
 from .context import _owned_context
+from ._photos import read_matte as _matte, read_photo as _photo
+from ._single_image import DetectedLight, LightDetection, detect_lights  # noqa: F401  (public here)
 
-__all__ = ["Dipole", "Profile", "materials", "henyey_greenstein", "fresnel_reflectance", "render", "Rendered", "read_mesh",
-           "estimate_bssrdf", "Estimate"]
+__all__ = ["Dipole", "Profile", "materials", "henyey_greenstein", "fresnel_reflectance", "render", "Rendered",
+           "read_mesh", "estimate_bssrdf", "Estimate", "detect_lights", "LightDetection", "DetectedLight"]
 
 
 def _check(code):
@@ -481,21 +483,6 @@ class Estimate:
         return self.hermite if self.fit == "hermite" else self.dipole
 
 
-def _photo(photo):
-    """The photo as an (h, w, 3) float32 array: an array, or an HDR file (EXR, HDR, PFM);
-    8-bit formats are refused (their values are not radiance)."""
-    if isinstance(photo, (str, os.PathLike)):
-        path = os.fspath(photo)
-        if path.lower().endswith((".png", ".jpg", ".jpeg", ".bmp", ".gif")):
-            raise ArgumentError("photo: %s is an 8-bit image, whose values are display codes, not radiance: give "
-                                "an HDR photograph (.exr, .hdr)" % path)
-        photo = image.read(path)
-    array = np.ascontiguousarray(photo, dtype=np.float32)
-    if array.ndim != 3 or array.shape[2] != 3:
-        raise ArgumentError("photo must be an (height, width, 3) array or an HDR file, got shape %s" % (array.shape,))
-    return array
-
-
 def _system(ctx, job, r):
     """The estimate's linear system and what it is assembled from (Estimate.system)."""
     n, m, s = r.equation_pixels, r.basis_count, 2 * r.object_pixels
@@ -549,11 +536,7 @@ def estimate_bssrdf(photo, mesh, lights, camera=None, *, basis=24, family="piece
     params.max_side = to_int(max_side, "max_side", 8, 4096)
     params.remove_highlights = int(bool(remove_highlights))
     params.subtract_minimum = int(bool(subtract_minimum))
-    matte_array = None
-    if matte is not None:
-        matte_array = np.ascontiguousarray(np.asarray(matte) != 0, dtype=np.uint8)
-        if matte_array.shape != (height, width):
-            raise ArgumentError("matte must have the photo's shape %s, got %s" % ((height, width), matte_array.shape))
+    matte_array = _matte(matte, height, width)
     t0 = time.perf_counter()
     with _owned_context(context) as ctx:
         mesh_handle = _mesh_handle(ctx, mesh)
@@ -596,3 +579,4 @@ def estimate_bssrdf(photo, mesh, lights, camera=None, *, basis=24, family="piece
         timings={"geometry": r.geometry_seconds, "histograms": r.histogram_seconds, "solve": r.solve_seconds,
                  "total": seconds},
         features=features, system=system, hermite=Profile(r.r_max_mm, hermite, r.dipole.eta), fit=fit)
+

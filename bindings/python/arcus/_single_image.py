@@ -1,0 +1,65 @@
+"""The single-image estimate (thesis §3.4): what an uncontrolled photograph gives
+without a mesh or lights.  Public through :mod:`arcus.translucency`."""
+
+from ctypes import byref, c_float, c_uint8
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _lib
+from ._lib import lib
+from ._photos import read_matte, read_photo
+from .context import _owned_context
+
+
+@dataclass
+class DetectedLight:
+    """A light found in a photograph (:func:`detect_lights`), in the camera's frame (x
+    right, y up, z toward the camera): ``azimuth_deg`` θ in the image plane,
+    counter-clockwise from +x; ``zenith_deg`` φ from the camera's axis (0: from the
+    camera, 90: in the image plane); ``direction`` toward it, (sinφ cosθ, sinφ sinθ,
+    cosφ); ``intensity``, relative (the lights' sum is 1); ``azimuth_spread_deg`` and
+    ``zenith_spread_deg``, half the range of angles that fit within 5% of the best."""
+    azimuth_deg: float
+    zenith_deg: float
+    direction: np.ndarray
+    intensity: float
+    azimuth_spread_deg: float
+    zenith_spread_deg: float
+
+
+@dataclass
+class LightDetection:
+    """What :func:`detect_lights` found: ``lights`` (strongest first), the object's
+    ``object_pixels`` and ``contour_pixels``, ``segmented`` (True: no matte was given),
+    ``contour_misfit`` (the contour model's RMS residual over the contour's RMS) and
+    ``seconds``."""
+    lights: list
+    object_pixels: int
+    contour_pixels: int
+    segmented: bool
+    contour_misfit: float
+    seconds: float
+
+
+def detect_lights(photo, matte=None, *, context=None):
+    """The directional lights of the object in ``photo`` (an HDR file or an (h, w, 3)
+    array of linear radiance; 8-bit images are read with a warning) from the photo alone
+    (thesis §3.4, after Lopez-Moreno et al. 2009): azimuths from its contour, zeniths from
+    the luminance gradients inside it.  ``matte``: an (h, w) array, non-zero on the
+    object (default: segmented from the photo).  A :class:`LightDetection`."""
+    pixels = read_photo(photo, eight_bit="warn")
+    height, width = pixels.shape[:2]
+    matte_array = read_matte(matte, height, width)
+    result = _lib.LightDetectionStruct()
+    with _owned_context(context) as ctx:
+        ctx._check(lib.arcus_translucency_detect_lights(
+            ctx._handle, width, height, _lib.ptr(pixels, c_float),
+            None if matte_array is None else _lib.ptr(matte_array, c_uint8), byref(result)))
+    lights = [DetectedLight(azimuth_deg=light.azimuth_deg, zenith_deg=light.zenith_deg,
+                            direction=np.array(light.direction[:]), intensity=light.intensity,
+                            azimuth_spread_deg=light.azimuth_spread_deg, zenith_spread_deg=light.zenith_spread_deg)
+              for light in result.lights[:result.count]]
+    return LightDetection(lights=lights, object_pixels=result.object_pixels, contour_pixels=result.contour_pixels,
+                          segmented=bool(result.segmented), contour_misfit=result.contour_misfit,
+                          seconds=result.seconds)

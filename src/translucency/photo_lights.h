@@ -1,0 +1,47 @@
+// Light directions from one uncontrolled photograph (thesis §3.4, after Lopez-Moreno,
+// Hadap, Reinhard & Gutierrez 2009, "Light source detection in photographs", CEIG):
+// the object found in the photo, its outer contour with the normals there, the lights'
+// azimuths from the contour (k-means on the luminance-weighted normals, the count from
+// a clamped-cosine model of the contour's luminance) and their zeniths from the
+// luminance gradients inside the object.  arcus_translucency.h states the conventions.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "arcus/arcus_translucency.h"
+
+namespace arcus::translucency {
+
+// The object in a photograph: a mask of its pixels (the matte's largest region, or one
+// segmented from the photo, small holes filled) and every pixel's luminance.
+struct PhotoObject {
+  uint32_t width = 0, height = 0;
+  std::vector<uint8_t> mask;      // 1: the object
+  std::vector<double> luminance;  // Rec. 709 weights, every pixel
+  size_t pixels = 0;              // the mask's
+  bool segmented = false;
+};
+
+// Checks the photo (finite, >= 0) and finds the object; errors name "photo" or "matte":
+// no object, or one touching the border.
+PhotoObject find_object(uint32_t width, uint32_t height, const float* photo, const uint8_t* matte);
+
+// A pixel of the outer contour: where (pixel centres, x right, y down), the outward
+// normal there in the camera's frame (x right, y up; the surface faces across the view
+// at a contour), and the luminance just inside.
+struct ContourSample {
+  double x = 0, y = 0;
+  double nx = 0, ny = 0;
+  double luminance = 0;
+};
+std::vector<ContourSample> outer_contour(const PhotoObject& object);
+
+// The normals of a globally convex stand-in for the object, 3 per pixel (0 outside):
+// from the distance d to the contour, a sphere's profile, sin(normal's zenith) =
+// 1 − d / max d, facing away from the nearest contour.
+std::vector<double> convex_normals(const PhotoObject& object);
+
+arcus_light_detection detect_lights(uint32_t width, uint32_t height, const float* photo, const uint8_t* matte);
+
+}  // namespace arcus::translucency
