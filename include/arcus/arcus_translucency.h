@@ -364,6 +364,48 @@ ARCUS_API arcus_status arcus_translucency_detect_lights(arcus_context_t* ctx, ui
                                                         const float* photo, const uint8_t* matte,
                                                         arcus_light_detection* result);
 
+/* ---- shape from the photograph alone (thesis §3.4; Khan et al. 2006) -----------------
+ * A depth map Z of the object (the same object as arcus_translucency_detect_lights finds)
+ * as base_weight × a base layer + detail_weight × a detail layer:
+ *   base:   global convexity.  The contour at Z = 0 and a sphere's profile from the
+ *           distance d to it, R·sqrt(1 − (1 − d/R)²) (R: the largest d), scaled by the
+ *           bilateral-filtered luminance B through the "inflation" spline, a monotone
+ *           cubic from 1 − inflation at B = 0 to 1 at B = 1 ("dark is deep");
+ *   detail: the filter's high-frequency residual, (luminance − B) · R;
+ * the luminance over the object's 99th percentile.  The bilateral filter's spatial σ is
+ * sigma_spatial × the object's diameter and its range σ is sigma_intensity (§3.4: 0.08–0.1
+ * and 0.3–0.5).  The bas-relief ambiguity leaves Z's scale unknown: `relief` multiplies
+ * it (1: a sphere's depth for a round object).  ARCUS_DEPTH_LUMINANCE is the simplest
+ * method, Z = R × luminance (Fig. 3.9's "simplest", for comparison).  Normals from Z's
+ * central differences.  docs/translucency.md. */
+typedef enum arcus_depth_method {
+  ARCUS_DEPTH_BASE_DETAIL = 0, /* base and detail layers (the thesis' choice; default)        */
+  ARCUS_DEPTH_BASE = 1,        /* the base layer alone                                          */
+  ARCUS_DEPTH_LUMINANCE = 2    /* the luminance as depth                                        */
+} arcus_depth_method;
+
+typedef struct arcus_photo_shape_params {
+  int32_t method;          /* arcus_depth_method                                               */
+  double sigma_spatial;    /* the bilateral filter's spatial σ over the object's diameter (0.09) */
+  double sigma_intensity;  /* its range σ, luminance over its 99th percentile (0.4)              */
+  double base_weight;      /* (0.8)                                                             */
+  double detail_weight;    /* (0.2)                                                             */
+  double inflation;        /* the spline's drop at B = 0, 0..1 (0.3)                            */
+  double relief;           /* Z's scale, the bas-relief parameter, > 0 (1)                      */
+} arcus_photo_shape_params;
+
+ARCUS_API arcus_status arcus_translucency_photo_shape_params_init(arcus_photo_shape_params* params);
+
+/* The object's depth (width × height doubles, pixels toward the camera, 0 outside it) and
+ * normals (width × height × 3, unit, the camera's frame; 0 outside); `matte` may be NULL
+ * (the object segmented as for the lights); `mask` (width × height bytes, 1: the object)
+ * may be NULL.  Refused as arcus_translucency_detect_lights refuses, and for parameters
+ * out of range, naming them. */
+ARCUS_API arcus_status arcus_translucency_estimate_shape(arcus_context_t* ctx, uint32_t width, uint32_t height,
+                                                         const float* photo, const uint8_t* matte,
+                                                         const arcus_photo_shape_params* params, double* depth,
+                                                         double* normals, uint8_t* mask);
+
 /* ---- genetic inverse rendering (thesis §3.2, §5.1) ------------------------------------
  * The genes of a model whose render best matches a target image of a known mesh under
  * known directional lights and camera: per-pixel least squares in YCbCr (the thesis'

@@ -15,6 +15,7 @@
 #include "translucency/hermite.h"
 #include "translucency/inverse.h"
 #include "translucency/photo_lights.h"
+#include "translucency/photo_shape.h"
 #include "translucency/render.h"
 
 using namespace arcus;
@@ -304,6 +305,39 @@ arcus_status arcus_translucency_detect_lights(arcus_context_t* ctx, uint32_t wid
     require_pointer(result, "result");
     require_pointer(photo, "photo");
     *result = translucency::detect_lights(width, height, photo, matte);
+    return ARCUS_SUCCESS;
+  });
+}
+
+arcus_status arcus_translucency_photo_shape_params_init(arcus_photo_shape_params* params) {
+  return without_context([&] {
+    require_pointer(params, "params");
+    *params = arcus_photo_shape_params{};
+    params->method = ARCUS_DEPTH_BASE_DETAIL;
+    params->sigma_spatial = 0.09;  // thesis §3.4: 0.08–0.1
+    params->sigma_intensity = 0.4; // 0.3–0.5
+    params->base_weight = 0.8;     // "usually 0.8 and 0.2"
+    params->detail_weight = 0.2;
+    params->inflation = 0.3;
+    params->relief = 1;
+  });
+}
+
+arcus_status arcus_translucency_estimate_shape(arcus_context_t* ctx, uint32_t width, uint32_t height,
+                                               const float* photo, const uint8_t* matte,
+                                               const arcus_photo_shape_params* params, double* depth,
+                                               double* normals, uint8_t* mask) {
+  return on<arcus_context_s>(ctx, kContextHandle, "ctx", [&](arcus_context_s*, std::string*) {
+    require_pointer(photo, "photo");
+    require_pointer(params, "params");
+    require_pointer(depth, "depth");
+    require_pointer(normals, "normals");
+    check_shape_params(*params);
+    const PhotoObject object = find_object(width, height, photo, matte);
+    const PhotoShape shape = estimate_shape(object, *params);
+    std::copy(shape.depth.begin(), shape.depth.end(), depth);
+    std::copy(shape.normals.begin(), shape.normals.end(), normals);
+    if (mask) std::copy(object.mask.begin(), object.mask.end(), mask);
     return ARCUS_SUCCESS;
   });
 }

@@ -7,6 +7,7 @@ The camera looks down −z with y up, so its frame is the world's: a light at az
 (in the image plane, from +x) and zenith φ (from the camera's axis) lies toward
 (sinφ cosθ, sinφ sinθ, cosφ)."""
 
+from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
@@ -52,6 +53,12 @@ def geometries():
             "lumpy sphere": (lumpy, f)}
 
 
+@lru_cache(maxsize=None)
+def fig_3_10_photo(geometry, material):
+    """Fig. 3.10's photo of one geometry and material, rendered once a session."""
+    return photograph(geometries()[geometry], MATERIALS[material], [(*FIG_3_10_LIGHT, 1.0)])
+
+
 def photograph(mesh, diffuse_length_mm, lights, size=SIZE):
     """The engine's render of `mesh` of a grey material (R_total 0.8, the given ℓ_d, η
     1.3) under `lights` ([(azimuth, zenith, irradiance)]), orthographic, framed with a
@@ -77,3 +84,47 @@ def lambertian_sphere(lights, size=SIZE, radius=50.0, ambient=0.0):
         luminance += e * np.clip(normals @ toward(a, z), 0, None)
     luminance = np.where(inside, luminance, 0)
     return np.repeat(luminance[..., None], 3, -1).astype(np.float32), inside, np.where(inside[..., None], normals, 0)
+
+
+def seen_normals(mesh, size=SIZE):
+    """What :func:`photograph`'s camera sees of `mesh`, cast here in numpy (no arcus
+    code): per pixel centre the nearest triangle along −z, its vertex normals
+    (area-weighted) interpolated there; (normals (size, size, 3), seen (size, size))."""
+    vertices, triangles = np.asarray(mesh[0], float), np.asarray(mesh[1], int)
+    extent = float(np.abs(vertices[:, :2]).max())
+    pixel = 2.4 * extent / size
+    corner = np.cross(vertices[triangles[:, 1]] - vertices[triangles[:, 0]],
+                      vertices[triangles[:, 2]] - vertices[triangles[:, 0]])
+    vertex_normals = np.zeros_like(vertices)
+    for k in range(3):
+        np.add.at(vertex_normals, triangles[:, k], corner)
+    vertex_normals /= np.linalg.norm(vertex_normals, axis=1, keepdims=True)
+    centres = (np.arange(size) + 0.5) * pixel - 1.2 * extent
+    px, py = np.meshgrid(centres, -centres)
+    depth = np.full((size, size), -np.inf)
+    normals = np.zeros((size, size, 3))
+    for t in triangles:
+        a, b, c = vertices[t]
+        lo, hi = np.minimum(np.minimum(a, b), c), np.maximum(np.maximum(a, b), c)
+        cols = np.nonzero((centres >= lo[0]) & (centres <= hi[0]))[0]
+        rows = np.nonzero((-centres >= lo[1]) & (-centres <= hi[1]))[0]
+        if not len(cols) or not len(rows):
+            continue
+        x, y = px[np.ix_(rows, cols)], py[np.ix_(rows, cols)]
+        det = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])
+        if abs(det) < 1e-15:
+            continue
+        u = ((x - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (y - a[1])) / det
+        v = ((b[0] - a[0]) * (y - a[1]) - (x - a[0]) * (b[1] - a[1])) / det
+        inside = (u >= 0) & (v >= 0) & (u + v <= 1)
+        z = a[2] + u * (b[2] - a[2]) + v * (c[2] - a[2])
+        nearer = inside & (z > depth[np.ix_(rows, cols)])
+        if not nearer.any():
+            continue
+        n = ((1 - u - v)[..., None] * vertex_normals[t[0]] + u[..., None] * vertex_normals[t[1]]
+             + v[..., None] * vertex_normals[t[2]])
+        n /= np.linalg.norm(n, axis=-1, keepdims=True)
+        block_depth, block_normals = depth[np.ix_(rows, cols)], normals[np.ix_(rows, cols)]
+        block_depth[nearer], block_normals[nearer] = z[nearer], n[nearer]
+        depth[np.ix_(rows, cols)], normals[np.ix_(rows, cols)] = block_depth, block_normals
+    return normals, np.isfinite(depth)

@@ -180,6 +180,11 @@ int main(void) {
   F(arcus_light_detection, count) F(arcus_light_detection, lights) F(arcus_light_detection, object_pixels)
   F(arcus_light_detection, contour_pixels) F(arcus_light_detection, segmented)
   F(arcus_light_detection, contour_misfit) F(arcus_light_detection, seconds)
+  printf("arcus_photo_shape_params %zu\n", sizeof(arcus_photo_shape_params));
+  F(arcus_photo_shape_params, method) F(arcus_photo_shape_params, sigma_spatial)
+  F(arcus_photo_shape_params, sigma_intensity) F(arcus_photo_shape_params, base_weight)
+  F(arcus_photo_shape_params, detail_weight) F(arcus_photo_shape_params, inflation)
+  F(arcus_photo_shape_params, relief)
   printf("arcus_daylight_desc %zu\n", sizeof(arcus_daylight_desc));
   F(arcus_daylight_desc, site_height) F(arcus_daylight_desc, ozone_du) F(arcus_daylight_desc, aerosol_depth_500)
   F(arcus_daylight_desc, angstrom_exponent) F(arcus_daylight_desc, aerosol_scale_height) F(arcus_daylight_desc, co2_ppm)
@@ -206,6 +211,7 @@ STRUCTS = {
     "arcus_optical_depths": _lib.OpticalDepthsStruct,
     "arcus_detected_light": _lib.DetectedLightStruct,
     "arcus_light_detection": _lib.LightDetectionStruct,
+    "arcus_photo_shape_params": _lib.PhotoShapeParamsStruct,
 }
 
 

@@ -9,15 +9,14 @@ import pytest
 from arcus.translucency import detect_lights
 from arcus._errors import ArgumentError
 
-from photo_scenes import (FIG_3_10_LIGHT, MATERIALS, angle_deg, geometries, lambertian_sphere, photograph,
-                          toward)
+from photo_scenes import (FIG_3_10_LIGHT, MATERIALS, angle_deg, fig_3_10_photo, geometries, lambertian_sphere,
+                          photograph, toward)
 
 
 @pytest.fixture(scope="module")
 def fig_3_10():
     """{(geometry, material): Rendered} under Fig. 3.10's light, (θ, φ) = (145°, 45°)."""
-    light = [(*FIG_3_10_LIGHT, 1.0)]
-    return {(g, m): photograph(mesh, ld, light) for g, mesh in geometries().items() for m, ld in MATERIALS.items()}
+    return {(g, m): fig_3_10_photo(g, m) for g in geometries() for m in MATERIALS}
 
 
 @pytest.mark.heavy
@@ -71,7 +70,7 @@ def test_segmented_without_a_matte():
     """Without a matte the object is what stands above the photo's frame: all of a very
     translucent sphere, whose unlit side still glows (within 1% of the true pixels), and
     its light within 20°."""
-    photo = photograph(geometries()["sphere"], MATERIALS["very translucent"], [(*FIG_3_10_LIGHT, 1.0)])
+    photo = fig_3_10_photo("sphere", "very translucent")
     found = detect_lights(photo.image)
     assert found.segmented
     assert abs(found.object_pixels - photo.covered.sum()) <= 0.01 * photo.covered.sum()

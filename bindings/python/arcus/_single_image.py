@@ -7,6 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _lib
+from ._args import to_choice, to_float
 from ._lib import lib
 from ._photos import read_matte, read_photo
 from .context import _owned_context
@@ -63,3 +64,43 @@ def detect_lights(photo, matte=None, *, context=None):
     return LightDetection(lights=lights, object_pixels=result.object_pixels, contour_pixels=result.contour_pixels,
                           segmented=bool(result.segmented), contour_misfit=result.contour_misfit,
                           seconds=result.seconds)
+
+
+DEPTH_METHODS = {"base+detail": 0, "base": 1, "luminance": 2}  # arcus_depth_method
+
+
+@dataclass
+class PhotoShape:
+    """The object's shape from a photograph (:func:`estimate_shape`): ``depth`` (h, w)
+    in pixels toward the camera, ``normals`` (h, w, 3) unit in the camera's frame (x
+    right, y up), ``mask`` (h, w) bool: the object; 0 outside it."""
+    depth: np.ndarray
+    normals: np.ndarray
+    mask: np.ndarray
+
+
+def estimate_shape(photo, matte=None, *, method="base+detail", relief=1.0, sigma_spatial=0.09, sigma_intensity=0.4,
+                   base_weight=0.8, detail_weight=0.2, inflation=0.3, context=None):
+    """The depth and normals of the object in ``photo`` from the photo alone (thesis
+    §3.4, after Khan et al. 2006): ``method`` "base+detail" (the thesis'), "base" or
+    "luminance" (the simplest: luminance as depth); ``relief`` scales the depth (the
+    bas-relief ambiguity leaves it open); the bilateral filter's ``sigma_spatial`` (over
+    the object's diameter) and ``sigma_intensity``; the layers' weights; the inflation
+    spline's drop at black.  arcus_translucency.h says how.  A :class:`PhotoShape`."""
+    pixels = read_photo(photo, eight_bit="warn")
+    height, width = pixels.shape[:2]
+    matte_array = read_matte(matte, height, width)
+    params = _lib.PhotoShapeParamsStruct()
+    _lib.check(lib.arcus_translucency_photo_shape_params_init(byref(params)))
+    params.method = to_choice(method, "method", DEPTH_METHODS)
+    for name, value in (("relief", relief), ("sigma_spatial", sigma_spatial), ("sigma_intensity", sigma_intensity),
+                        ("base_weight", base_weight), ("detail_weight", detail_weight), ("inflation", inflation)):
+        setattr(params, name, to_float(value, name))
+    depth, normals = np.empty((height, width)), np.empty((height, width, 3))
+    mask = np.empty((height, width), np.uint8)
+    with _owned_context(context) as ctx:
+        ctx._check(lib.arcus_translucency_estimate_shape(
+            ctx._handle, width, height, _lib.ptr(pixels, c_float),
+            None if matte_array is None else _lib.ptr(matte_array, c_uint8), byref(params), _lib.ptr(depth),
+            _lib.ptr(normals), _lib.ptr(mask, c_uint8)))
+    return PhotoShape(depth=depth, normals=normals, mask=mask.astype(bool))

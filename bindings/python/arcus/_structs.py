@@ -497,6 +497,18 @@ class LightDetectionStruct(ctypes.Structure):
     ]
 
 
+class PhotoShapeParamsStruct(ctypes.Structure):
+    _fields_ = [
+        ("method", c_int32),
+        ("sigma_spatial", c_double),
+        ("sigma_intensity", c_double),
+        ("base_weight", c_double),
+        ("detail_weight", c_double),
+        ("inflation", c_double),
+        ("relief", c_double),
+    ]
+
+
 class TranslucencyEstimateResultStruct(ctypes.Structure):
     _fields_ = [
         ("width", c_uint32),

@@ -31,10 +31,12 @@ from ._errors import ArgumentError
 from ._lib import lib
 from .context import _owned_context
 from ._photos import read_matte as _matte, read_photo as _photo
-from ._single_image import DetectedLight, LightDetection, detect_lights  # noqa: F401  (public here)
+from ._single_image import (DetectedLight, LightDetection, PhotoShape, detect_lights,  # noqa: F401  (public here)
+                            estimate_shape)
 
 __all__ = ["Dipole", "Profile", "materials", "henyey_greenstein", "fresnel_reflectance", "render", "Rendered",
-           "read_mesh", "estimate_bssrdf", "Estimate", "detect_lights", "LightDetection", "DetectedLight"]
+           "read_mesh", "estimate_bssrdf", "Estimate", "detect_lights", "LightDetection", "DetectedLight",
+           "estimate_shape", "PhotoShape"]
 
 
 def _check(code):
