@@ -1,7 +1,8 @@
-// arcus_translucency_detect_lights through the C API (thesis §3.4; Lopez-Moreno et al.
-// 2009): a Lambertian sphere drawn here in closed form, its light found to within the
-// pixel grid, and each bad argument refused naming itself.  The physics across shapes and
-// translucency is tests/python/test_translucency_lights.py's.
+// The single-image estimate through the C API (thesis §3.4): a Lambertian sphere drawn
+// here in closed form, its light found to within the pixel grid, its depth inflated back
+// to a sphere, the automatic estimate's outputs, and each bad argument refused naming
+// itself.  The physics across shapes and translucency is tests/python's
+// (test_translucency_lights.py, _shape.py, _auto.py).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -86,6 +87,66 @@ TEST_F(TranslucencyLights, BadArgumentsAreRefusedNamingThemselves) {
   std::vector<uint8_t> everything(kSide * kSide, 1);
   expect_invalid(arcus_translucency_detect_lights(ctx(), kSide, kSide, whole.rgb.data(), everything.data(), &found),
                  "border", "a matte over the whole photo");
+}
+
+// The convex stand-in inflates a disc to the sphere of its radius: the depth at the
+// centre is the radius (the Dirichlet boundary half a pixel out: within 3%), and the
+// normal there faces the camera.
+TEST_F(TranslucencyLights, InflatesTheSphereBack) {
+  const Photo photo = lambertian_sphere(145, 45);
+  arcus_photo_shape_params params{};
+  ASSERT_EQ(arcus_translucency_photo_shape_params_init(&params), ARCUS_SUCCESS);
+  std::vector<double> depth(kSide * kSide), normals(3 * kSide * kSide);
+  std::vector<uint8_t> mask(kSide * kSide);
+  ASSERT_EQ(arcus_translucency_estimate_shape(ctx(), kSide, kSide, photo.rgb.data(), photo.matte.data(), &params,
+                                              depth.data(), normals.data(), mask.data()),
+            ARCUS_SUCCESS)
+      << last_error();
+  const size_t centre = size_t(kSide / 2) * kSide + kSide / 2;
+  EXPECT_NEAR(depth[centre], kRadius, 0.03 * kRadius);
+  EXPECT_GT(normals[3 * centre + 2], 0.999);
+  EXPECT_EQ(mask, photo.matte);
+
+  expect_invalid(arcus_translucency_estimate_shape(ctx(), kSide, kSide, photo.rgb.data(), nullptr, &params, nullptr,
+                                                   normals.data(), nullptr),
+                 "depth", "no depth");
+  params.relief = 0;
+  expect_invalid(arcus_translucency_estimate_shape(ctx(), kSide, kSide, photo.rgb.data(), nullptr, &params,
+                                                   depth.data(), normals.data(), nullptr),
+                 "relief", "a flat relief");
+}
+
+TEST_F(TranslucencyLights, AutomaticEstimateReportsWhatThePhotoGave) {
+  const Photo photo = lambertian_sphere(145, 45);
+  arcus_translucency_auto_params params{};
+  ASSERT_EQ(arcus_translucency_auto_params_init(&params), ARCUS_SUCCESS);
+  arcus_job_t* job = nullptr;
+  ASSERT_EQ(arcus_translucency_estimate_auto(ctx(), kSide, kSide, photo.rgb.data(), photo.matte.data(), &params, &job),
+            ARCUS_SUCCESS)
+      << last_error();
+  arcus_light_detection lights{};
+  size_t vertices = 0, triangles = 0;
+  ASSERT_EQ(arcus_job_get_translucency_auto(job, &lights, nullptr, nullptr, nullptr, &vertices, &triangles, nullptr,
+                                            nullptr),
+            ARCUS_SUCCESS);
+  EXPECT_EQ(lights.count, 1u);
+  EXPECT_GT(vertices, 0u);
+  std::vector<double> positions(3 * vertices);
+  std::vector<uint32_t> faces(3 * triangles);
+  ASSERT_EQ(arcus_job_get_translucency_auto(job, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
+                                            positions.data(), faces.data()),
+            ARCUS_SUCCESS);
+  for (uint32_t f : faces) ASSERT_LT(f, vertices);
+  arcus_translucency_estimate_result result{};
+  EXPECT_EQ(arcus_job_get_translucency_estimate(job, &result), ARCUS_SUCCESS);
+  EXPECT_GT(result.equation_pixels, 0u);
+  arcus_job_release(job);
+
+  params.irradiance[1] = -1;
+  expect_invalid(arcus_translucency_estimate_auto(ctx(), kSide, kSide, photo.rgb.data(), nullptr, &params, &job),
+                 "irradiance", "a negative irradiance");
+  expect_invalid(arcus_translucency_estimate_auto(ctx(), kSide, kSide, photo.rgb.data(), nullptr, nullptr, &job),
+                 "params", "no params");
 }
 
 }  // namespace

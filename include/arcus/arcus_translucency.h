@@ -390,7 +390,7 @@ typedef struct arcus_photo_shape_params {
   double sigma_intensity;  /* its range σ, luminance over its 99th percentile (0.4)              */
   double base_weight;      /* (0.8)                                                             */
   double detail_weight;    /* (0.2)                                                             */
-  double inflation;        /* the spline's drop at B = 0, 0..1 (0.3)                            */
+  double inflation;        /* the spline's drop at B = 0, 0..1 (0: off; Khan et al.'s is ~0.3)  */
   double relief;           /* Z's scale, the bas-relief parameter, > 0 (1)                      */
 } arcus_photo_shape_params;
 
@@ -405,6 +405,45 @@ ARCUS_API arcus_status arcus_translucency_estimate_shape(arcus_context_t* ctx, u
                                                          const float* photo, const uint8_t* matte,
                                                          const arcus_photo_shape_params* params, double* depth,
                                                          double* normals, uint8_t* mask);
+
+/* ---- the BSSRDF from an uncontrolled photograph (thesis §3.4, §5.2) -------------------
+ * No mesh and no lights: the lights (arcus_translucency_detect_lights) and the depth
+ * (arcus_translucency_estimate_shape) from the photo, a closed mesh from the depth (the
+ * back mirrors the front, as §3.4 assumes; a unit per pixel), then
+ * arcus_translucency_estimate on it, seen orthographically pixel for pixel: the dipole,
+ * flagged approximate, and §3.4's plausible Hermite profile
+ * (arcus_job_get_translucency_hermite).  The photo does not give the lights' absolute
+ * irradiance, which the profile's scale shares with it (an albedo–light ambiguity):
+ * `irradiance` states it. */
+typedef struct arcus_translucency_auto_params {
+  arcus_translucency_estimate_params estimate; /* its camera, ortho_height and mm_per_unit
+                                                  are the pipeline's own and not read;
+                                                  by default here nonnegative is 1 and
+                                                  remove_highlights 0 (docs say why)       */
+  arcus_photo_shape_params shape;
+  double mm_per_pixel;   /* the photo's scale at the object, mm (> 0; 1)                   */
+  double irradiance[3];  /* the lights' summed irradiance on a surface facing them, RGB, in
+                            the photo's units (>= 0, not all 0; 1, 1, 1)                  */
+} arcus_translucency_auto_params;
+
+ARCUS_API arcus_status arcus_translucency_auto_params_init(arcus_translucency_auto_params* params);
+
+/* Estimates from `photo` alone (as arcus_translucency_estimate; `matte` may be NULL: the
+ * object segmented).  The job holds the estimate (arcus_job_get_translucency_estimate and
+ * the rest) and what the photo gave (arcus_job_get_translucency_auto). */
+ARCUS_API arcus_status arcus_translucency_estimate_auto(arcus_context_t* ctx, uint32_t width, uint32_t height,
+                                                        const float* photo, const uint8_t* matte,
+                                                        const arcus_translucency_auto_params* params,
+                                                        arcus_job_t** job);
+
+/* What an automatic estimate found: `lights`, `depth` and `normals` (as
+ * arcus_translucency_estimate_shape), `mask` (1: the object the mesh covers), the mesh's
+ * counts and arrays (`positions` vertex_count × 3 in pixels, `triangles` triangle_count ×
+ * 3); any pointer may be NULL (the counts first, then arrays that long). */
+ARCUS_API arcus_status arcus_job_get_translucency_auto(arcus_job_t* job, arcus_light_detection* lights,
+                                                       double* depth, double* normals, uint8_t* mask,
+                                                       size_t* vertex_count, size_t* triangle_count,
+                                                       double* positions, uint32_t* triangles);
 
 /* ---- genetic inverse rendering (thesis §3.2, §5.1) ------------------------------------
  * The genes of a model whose render best matches a target image of a known mesh under

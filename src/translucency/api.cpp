@@ -15,6 +15,7 @@
 #include "translucency/hermite.h"
 #include "translucency/inverse.h"
 #include "translucency/photo_lights.h"
+#include "translucency/photo_estimate.h"
 #include "translucency/photo_shape.h"
 #include "translucency/render.h"
 
@@ -318,7 +319,7 @@ arcus_status arcus_translucency_photo_shape_params_init(arcus_photo_shape_params
     params->sigma_intensity = 0.4; // 0.3–0.5
     params->base_weight = 0.8;     // "usually 0.8 and 0.2"
     params->detail_weight = 0.2;
-    params->inflation = 0.3;
+    params->inflation = 0;         // off: on one-light photos it costs 2–5° of normal (docs)
     params->relief = 1;
   });
 }
@@ -339,6 +340,55 @@ arcus_status arcus_translucency_estimate_shape(arcus_context_t* ctx, uint32_t wi
     std::copy(shape.normals.begin(), shape.normals.end(), normals);
     if (mask) std::copy(object.mask.begin(), object.mask.end(), mask);
     return ARCUS_SUCCESS;
+  });
+}
+
+arcus_status arcus_translucency_auto_params_init(arcus_translucency_auto_params* params) {
+  return without_context([&] {
+    require_pointer(params, "params");
+    arcus_translucency_auto_params p{};
+    arcus_translucency_estimate_params_init(&p.estimate);
+    arcus_translucency_photo_shape_params_init(&p.shape);
+    p.estimate.nonnegative = 1;        // a plausible profile: no oscillating bins
+    p.estimate.remove_highlights = 0;  // the cut finds highlights in photos without one (docs)
+    p.mm_per_pixel = 1;
+    p.irradiance[0] = p.irradiance[1] = p.irradiance[2] = 1;
+    *params = p;
+  });
+}
+
+arcus_status arcus_translucency_estimate_auto(arcus_context_t* ctx, uint32_t width, uint32_t height,
+                                              const float* photo, const uint8_t* matte,
+                                              const arcus_translucency_auto_params* params, arcus_job_t** job) {
+  return on<arcus_context_s>(ctx, kContextHandle, "ctx", [&](arcus_context_s*, std::string* message) {
+    require_pointer(job, "job");
+    *job = nullptr;
+    require_pointer(params, "params");
+    require_pointer(photo, "photo");
+    bool cancelled = false;
+    auto j = translucency::estimate_automatic(ctx, width, height, photo, matte, *params, &cancelled);
+    retain_context(ctx);  // the job's reference
+    *job = j.release();
+    if (!cancelled) return ARCUS_SUCCESS;
+    *message = "the progress callback cancelled the estimate: the profile is incomplete";
+    return ARCUS_ERROR_CANCELLED;
+  });
+}
+
+arcus_status arcus_job_get_translucency_auto(arcus_job_t* job, arcus_light_detection* lights, double* depth,
+                                             double* normals, uint8_t* mask, size_t* vertex_count,
+                                             size_t* triangle_count, double* positions, uint32_t* triangles) {
+  return on_job<EstimateJob>(job, "a translucency estimate", [&](EstimateJob* j) {
+    require(j->automatic, "job: an estimate given a mesh and lights, not one from the photo alone "
+                          "(arcus_translucency_estimate_auto)");
+    if (lights) *lights = j->lights;
+    if (depth) std::copy(j->depth.begin(), j->depth.end(), depth);
+    if (normals) std::copy(j->normals.begin(), j->normals.end(), normals);
+    if (mask) std::copy(j->mask.begin(), j->mask.end(), mask);
+    if (vertex_count) *vertex_count = j->relief.vertex_count();
+    if (triangle_count) *triangle_count = j->relief.triangle_count();
+    if (positions) std::copy(j->relief.positions.begin(), j->relief.positions.end(), positions);
+    if (triangles) std::copy(j->relief.triangles.begin(), j->relief.triangles.end(), triangles);
   });
 }
 

@@ -25,6 +25,13 @@ struct EstimateJob : arcus_job_s {
   // The front sources' sub-pixel points (3 each) and their E·ΔA (3 each), which stand
   // for the front sources within the refined radius.
   std::vector<double> sub_sources, sub_source_weights;
+  // From an uncontrolled photograph (photo_estimate.h): what the photo gave in place of
+  // the mesh and lights; empty otherwise.
+  bool automatic = false;
+  arcus_light_detection lights{};
+  std::vector<double> depth, normals;  // per pixel of the photo
+  std::vector<uint8_t> mask;
+  geometry::Mesh relief;               // the closed mesh the estimate ran on, in pixels
 };
 
 // The luminance above which pixels are highlights (thesis §3.3.1 after Khan et al.

@@ -363,35 +363,62 @@ std::vector<ContourSample> outer_contour(const PhotoObject& o) {
   return out;
 }
 
-std::vector<double> convex_normals(const PhotoObject& o) {
-  cv::Mat mask(int(o.height), int(o.width), CV_8U);
-  for (size_t i = 0; i < o.mask.size(); ++i) mask.data[i] = o.mask[i] ? 255 : 0;
-  cv::Mat distance;
-  cv::distanceTransform(mask, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
-  double largest = 0;
-  cv::minMaxLoc(distance, nullptr, &largest);
-  // The gradient of a smoothed distance: the direction away from the nearest contour,
-  // defined also on the distance's ridge.
-  cv::Mat smooth, dx, dy;
-  cv::GaussianBlur(distance, smooth, cv::Size(0, 0), 1.5);
-  cv::Sobel(smooth, dx, CV_32F, 1, 0);
-  cv::Sobel(smooth, dy, CV_32F, 0, 1);
-  std::vector<double> normals(3 * o.mask.size(), 0.0);
-  for (size_t i = 0; i < o.mask.size(); ++i) {
-    if (!o.mask[i]) continue;
-    const double gx = -dx.at<float>(int(i)), gy = dy.at<float>(int(i));  // outward, y up
-    const double g = std::hypot(gx, gy);
-    const double sine = std::clamp(1 - distance.at<float>(int(i)) / largest, 0.0, 1.0);
-    normals[3 * i] = g > 0 ? sine * gx / g : 0;
-    normals[3 * i + 1] = g > 0 ? sine * gy / g : 0;
-    normals[3 * i + 2] = std::sqrt(1 - sine * sine);
+std::vector<double> convex_depth(const PhotoObject& o) {
+  // ∇²u = −1 by successive over-relaxation (the 5-point Laplacian, u = 0 at the pixels
+  // outside), at the over-relaxation that is best for a square of the object's span.
+  const long w = long(o.width), h = long(o.height);
+  long x0 = w, x1 = 0, y0 = h, y1 = 0;
+  for (long y = 0; y < h; ++y)
+    for (long x = 0; x < w; ++x)
+      if (o.mask[size_t(y * w + x)]) {
+        x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+      }
+  const long span = std::max(x1 - x0, y1 - y0) + 1;
+  const double omega = 2 / (1 + std::sin(M_PI / double(span + 1)));
+  std::vector<double> u(o.mask.size(), 0.0);
+  auto at = [&](long x, long y) { return x < 0 || y < 0 || x >= w || y >= h ? 0.0 : u[size_t(y * w + x)]; };
+  for (long sweep = 0; sweep < 40 * span; ++sweep) {
+    double change = 0, largest = 0;
+    for (long y = y0; y <= y1; ++y)
+      for (long x = x0; x <= x1; ++x) {
+        const size_t i = size_t(y * w + x);
+        if (!o.mask[i]) continue;
+        const double next = 0.25 * (at(x - 1, y) + at(x + 1, y) + at(x, y - 1) + at(x, y + 1) + 1);
+        const double step = omega * (next - u[i]);
+        u[i] += step;
+        change = std::max(change, std::fabs(step));
+        largest = std::max(largest, u[i]);
+      }
+    if (change <= 1e-9 * largest) break;
   }
+  for (double& z : u) z = std::sqrt(4 * std::max(z, 0.0));
+  return u;
+}
+
+std::vector<double> depth_normals(const PhotoObject& o, const std::vector<double>& depth) {
+  const long w = long(o.width), h = long(o.height);
+  auto z_at = [&](long x, long y) { return x < 0 || y < 0 || x >= w || y >= h ? 0.0 : depth[size_t(y * w + x)]; };
+  std::vector<double> normals(3 * o.mask.size(), 0.0);
+  for (long y = 0; y < h; ++y)
+    for (long x = 0; x < w; ++x) {
+      const size_t i = size_t(y * w + x);
+      if (!o.mask[i]) continue;
+      const double dzdx = 0.5 * (z_at(x + 1, y) - z_at(x - 1, y));
+      const double dzdy = -0.5 * (z_at(x, y + 1) - z_at(x, y - 1));  // rows run down, y up
+      const double norm = std::sqrt(dzdx * dzdx + dzdy * dzdy + 1);
+      normals[3 * i] = -dzdx / norm;
+      normals[3 * i + 1] = -dzdy / norm;
+      normals[3 * i + 2] = 1 / norm;
+    }
   return normals;
 }
 
 arcus_light_detection detect_lights(uint32_t width, uint32_t height, const float* photo, const uint8_t* matte) {
+  return detect_lights(find_object(width, height, photo, matte));
+}
+
+arcus_light_detection detect_lights(const PhotoObject& object) {
   const auto start = std::chrono::steady_clock::now();
-  const PhotoObject object = find_object(width, height, photo, matte);
   const std::vector<ContourSample> contour = outer_contour(object);
   double top = 0;
   for (const ContourSample& p : contour) top = std::max(top, p.luminance);
@@ -412,7 +439,7 @@ arcus_light_detection detect_lights(uint32_t width, uint32_t height, const float
 
   // Zeniths: each in turn over 0..90°, the others held, fitted to the luminance steps
   // between neighbouring interior pixels (the gradients: no ambient term to fit).
-  const std::vector<double> normals = convex_normals(object);
+  const std::vector<double> normals = depth_normals(object, convex_depth(object));
   const Gradients gradients = interior_gradients(object, normals);
   require(gradients.step.size() >= kMinObjectPixels,
           "photo: the object has too few pixels inside its contour to read the lights' zeniths");

@@ -37,11 +37,18 @@ struct ContourSample {
 };
 std::vector<ContourSample> outer_contour(const PhotoObject& object);
 
-// The normals of a globally convex stand-in for the object, 3 per pixel (0 outside):
-// from the distance d to the contour, a sphere's profile, sin(normal's zenith) =
-// 1 − d / max d, facing away from the nearest contour.
-std::vector<double> convex_normals(const PhotoObject& object);
+// The depth (pixels, 0 outside) of a globally convex stand-in for the object, inflated
+// from its contour as Johnston 2002 ("Lumo", the thesis' Joh02) and Teddy do: u solving
+// ∇²u = −1 inside, 0 outside, then Z = sqrt(4u).  A disc of radius R gives a sphere of
+// radius R exactly and an ellipse of semi-axes a, b an ellipsoid (of depth
+// sqrt(2 / (1/a² + 1/b²))), whose cross-sections the distance to the contour misses.
+std::vector<double> convex_depth(const PhotoObject& object);
+
+// Unit normals of a depth map (pixels toward the camera), 3 per pixel in the camera's
+// frame (x right, y up), by central differences with 0 outside; 0 outside the object.
+std::vector<double> depth_normals(const PhotoObject& object, const std::vector<double>& depth);
 
 arcus_light_detection detect_lights(uint32_t width, uint32_t height, const float* photo, const uint8_t* matte);
+arcus_light_detection detect_lights(const PhotoObject& object);
 
 }  // namespace arcus::translucency

@@ -49,12 +49,8 @@ PhotoShape estimate_shape(const PhotoObject& o, const arcus_photo_shape_params& 
   const int w = int(o.width), h = int(o.height);
   std::vector<float> luminance = normalized_luminance(o);
   cv::Mat lum(h, w, CV_32F, luminance.data());
-  cv::Mat mask(h, w, CV_8U);
-  for (size_t i = 0; i < o.mask.size(); ++i) mask.data[i] = o.mask[i] ? 255 : 0;
-  cv::Mat distance;
-  cv::distanceTransform(mask, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
-  double radius = 0;
-  cv::minMaxLoc(distance, nullptr, &radius);
+  const std::vector<double> convex = convex_depth(o);
+  const double radius = *std::max_element(convex.begin(), convex.end());
   // The bilateral filter (Tomasi & Manduchi 1998) keeps the luminance's edges and drops
   // its texture: its spatial σ a fraction of the object's diameter (that of a disc of its
   // area), its range σ in the normalized luminance.
@@ -67,10 +63,9 @@ PhotoShape estimate_shape(const PhotoObject& o, const arcus_photo_shape_params& 
   double sum = 0;
   for (size_t i = 0; i < o.mask.size(); ++i) {
     if (!o.mask[i]) continue;
-    const double b = base_luminance.at<float>(int(i)), d = std::min(1.0, distance.at<float>(int(i)) / radius);
-    const double profile = radius * std::sqrt(1 - (1 - d) * (1 - d));    // the contour at 0, convex
+    const double b = base_luminance.at<float>(int(i));
     const double inflate = 1 - p.inflation + p.inflation * b * b * (3 - 2 * b);  // monotone cubic Hermite
-    const double base = profile * inflate, detail = (luminance[i] - b) * radius;
+    const double base = convex[i] * inflate, detail = (luminance[i] - b) * radius;
     double z = base;
     if (p.method == ARCUS_DEPTH_BASE_DETAIL) z = base + p.detail_weight / p.base_weight * detail;
     if (p.method == ARCUS_DEPTH_LUMINANCE) z = radius * luminance[i];
@@ -81,21 +76,7 @@ PhotoShape estimate_shape(const PhotoObject& o, const arcus_photo_shape_params& 
   if (sum < 0)
     for (double& z : shape.depth) z = -z;
 
-  shape.normals.assign(3 * o.mask.size(), 0.0);
-  auto z_at = [&](int x, int y) {
-    return x < 0 || y < 0 || x >= w || y >= h ? 0.0 : shape.depth[size_t(y) * size_t(w) + size_t(x)];
-  };
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const size_t i = size_t(y) * size_t(w) + size_t(x);
-      if (!o.mask[i]) continue;
-      const double dzdx = 0.5 * (z_at(x + 1, y) - z_at(x - 1, y));
-      const double dzdy = -0.5 * (z_at(x, y + 1) - z_at(x, y - 1));  // rows run down, y up
-      const double norm = std::sqrt(dzdx * dzdx + dzdy * dzdy + 1);
-      shape.normals[3 * i] = -dzdx / norm;
-      shape.normals[3 * i + 1] = -dzdy / norm;
-      shape.normals[3 * i + 2] = 1 / norm;
-    }
+  shape.normals = depth_normals(o, shape.depth);
   return shape;
 }
 

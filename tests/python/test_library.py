@@ -185,6 +185,9 @@ int main(void) {
   F(arcus_photo_shape_params, sigma_intensity) F(arcus_photo_shape_params, base_weight)
   F(arcus_photo_shape_params, detail_weight) F(arcus_photo_shape_params, inflation)
   F(arcus_photo_shape_params, relief)
+  printf("arcus_translucency_auto_params %zu\n", sizeof(arcus_translucency_auto_params));
+  F(arcus_translucency_auto_params, estimate) F(arcus_translucency_auto_params, shape)
+  F(arcus_translucency_auto_params, mm_per_pixel) F(arcus_translucency_auto_params, irradiance)
   printf("arcus_daylight_desc %zu\n", sizeof(arcus_daylight_desc));
   F(arcus_daylight_desc, site_height) F(arcus_daylight_desc, ozone_du) F(arcus_daylight_desc, aerosol_depth_500)
   F(arcus_daylight_desc, angstrom_exponent) F(arcus_daylight_desc, aerosol_scale_height) F(arcus_daylight_desc, co2_ppm)
@@ -212,6 +215,7 @@ STRUCTS = {
     "arcus_detected_light": _lib.DetectedLightStruct,
     "arcus_light_detection": _lib.LightDetectionStruct,
     "arcus_photo_shape_params": _lib.PhotoShapeParamsStruct,
+    "arcus_translucency_auto_params": _lib.TranslucencyAutoParamsStruct,
 }
 
 

@@ -36,26 +36,31 @@ def fig_3_9():
 
 def test_fig_3_9_layers_against_the_simplest_method(fig_3_9):
     """The simplest method (luminance as depth) puts the bulge where the light is: its
-    normals are 29–37° off.  The base layer's convexity (the contour at 0, a sphere's
-    profile) brings them to 10–11° on the three convex shapes and 19° on the torus, which
-    is not convex.  The bounds, 12° and 20°, are those figures with a degree to spare;
-    the simplest must be at least twice as far off.  The thesis finds base + detail
-    best; here the detail layer moves the error by 0.3° at most either way (docs say
-    why), so the test asserts only that it does not cost more than 1°."""
+    normals are 34–37° off.  The base layer's convex stand-in (inflated from the contour:
+    exact for spheres and ellipsoids) brings them to 2–3° on the three convex shapes,
+    what the pixel grid leaves at the rim, and 18° on the torus, which is not convex.
+    The bounds, 5° and 20°, leave the grid and the lumps their due; the simplest must be
+    at least five times as far off.  The thesis finds base + detail best; here the
+    detail layer costs 0.1–0.2° (docs say why), so the test asserts only that it does
+    not cost more than 1°."""
     for geometry, error in fig_3_9.items():
-        bound = 20 if geometry == "torus" else 12
+        bound = 20 if geometry == "torus" else 5
         assert error["base+detail"] < bound, (geometry, error)
-        assert error["luminance"] > 1.5 * error["base+detail"], (geometry, error)
+        assert error["luminance"] > (1.5 if geometry == "torus" else 5) * error["base+detail"], (geometry, error)
         assert error["base+detail"] < error["base"] + 1.0, (geometry, error)
 
 
-def test_a_sphere_without_inflation_is_its_own_profile():
-    """With the inflation spline flat (inflation 0) and no detail, the base layer is a
-    sphere's profile from the contour's distance: on a closed-form sphere only the pixel
-    grid is left, worst at the rim where the normals turn fastest: 6° RMS."""
+def test_a_sphere_is_inflated_to_itself():
+    """Without the inflation spline (the default) and the detail, the base layer is the
+    convex stand-in, sqrt(4u) with ∇²u = −1 inside the disc: a sphere of the disc's
+    radius.  On a closed-form sphere only the pixel grid is left: 0.4° RMS where the
+    surface faces the camera within 60°, 2.2° over all (the rim's last pixel, where the
+    normals turn fastest, is up to 29° off); bounds of 1° and 3°."""
     photo, matte, truth = lambertian_sphere([(145.0, 45.0, 1.0)])
-    shape = estimate_shape(photo, matte, method="base", inflation=0)
-    assert rms_normal_error(shape, truth, matte) < 6
+    shape = estimate_shape(photo, matte, method="base")
+    assert rms_normal_error(shape, truth, matte) < 3
+    facing = matte & (truth[..., 2] > 0.5)
+    assert rms_normal_error(shape, truth, facing) < 1
     radius = 50.0  # photo_scenes' default
     assert shape.depth.max() == pytest.approx(radius, rel=0.03)
 

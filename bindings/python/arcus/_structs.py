@@ -509,6 +509,15 @@ class PhotoShapeParamsStruct(ctypes.Structure):
     ]
 
 
+class TranslucencyAutoParamsStruct(ctypes.Structure):
+    _fields_ = [
+        ("estimate", TranslucencyEstimateParamsStruct),
+        ("shape", PhotoShapeParamsStruct),
+        ("mm_per_pixel", c_double),
+        ("irradiance", c_double * 3),
+    ]
+
+
 class TranslucencyEstimateResultStruct(ctypes.Structure):
     _fields_ = [
         ("width", c_uint32),

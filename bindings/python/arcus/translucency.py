@@ -32,7 +32,7 @@ from ._lib import lib
 from .context import _owned_context
 from ._photos import read_matte as _matte, read_photo as _photo
 from ._single_image import (DetectedLight, LightDetection, PhotoShape, detect_lights,  # noqa: F401  (public here)
-                            estimate_shape)
+                            estimate_shape, light_detection)
 
 __all__ = ["Dipole", "Profile", "materials", "henyey_greenstein", "fresnel_reflectance", "render", "Rendered",
            "read_mesh", "estimate_bssrdf", "Estimate", "detect_lights", "LightDetection", "DetectedLight",
@@ -478,6 +478,9 @@ class Estimate:
     system: dict = None
     hermite: "Profile" = None
     fit: str = "dipole"
+    lights: "LightDetection" = None
+    shape: "PhotoShape" = None
+    relief: tuple = None
 
     @property
     def fitted(self):
@@ -501,53 +504,81 @@ def _system(ctx, job, r):
             "sub_source_weights": sub_weights, "refined_radius_mm": r.refined_radius_mm}
 
 
-def estimate_bssrdf(photo, mesh, lights, camera=None, *, basis=24, family="piecewise_constant", fit="dipole",
-                    fit_to="image", ortho_height=0.0, mm_per_unit=1.0, eta=1.3, exit="thesis", r_max_mm=0.0,
-                    max_side=200, matte=None, remove_highlights=True, subtract_minimum=True, tikhonov=0.0,
-                    nonnegative=False, keep_system=False, progress=None, context=None):
+def estimate_bssrdf(photo, mesh=None, lights=None, camera=None, *, basis=24, family="piecewise_constant",
+                    fit="dipole", fit_to="image", ortho_height=0.0, mm_per_unit=1.0, eta=1.3, exit="thesis",
+                    r_max_mm=0.0, max_side=200, matte=None, remove_highlights=None, subtract_minimum=True,
+                    tikhonov=0.0, nonnegative=None, keep_system=False, mm_per_pixel=1.0, irradiance=1.0, shape=None,
+                    progress=None, context=None):
     """Estimates the BSSRDF of the object in ``photo`` (an HDR file or an (h, w, 3)
     array of linear radiance) from its ``mesh`` (a path or ``(vertices, triangles)``),
     its directional ``lights`` and ``camera`` (as :func:`render`; the camera's size is
     the photo's): an :class:`Estimate`.  ``basis`` functions of ``family`` (one of
     :data:`BASIS_FAMILIES`, Table 3.2) up to ``r_max_mm`` (0: the object's diameter);
     ``tikhonov`` (λ: λ × the mean diagonal of AᵀA added to it) and ``nonnegative``
-    (weights >= 0), both off as in the thesis; ``fit``: "dipole" or "hermite" (§3.4's
+    (weights >= 0), both off as in the thesis (``nonnegative`` is on for the photo
+    alone); ``fit``: "dipole" or "hermite" (§3.4's
     monotone cubic Hermite profile; both are computed, ``fit`` picks ``.fitted``);
     ``fit_to``: "image" (the pixels the dipole predicts) or "profile" (the bins, as the
     thesis); ``matte``: an (h, w) array, non-zero on the object (default: the mesh's
-    projection)."""
+    projection).
+
+    With neither ``mesh`` nor ``lights`` (thesis §3.4, an uncontrolled photograph) both
+    come from the photo: :func:`detect_lights`, :func:`estimate_shape` (``shape``: a
+    dict of its keyword arguments) and a closed mesh from the depth, seen
+    orthographically at ``mm_per_pixel``; ``irradiance`` (one number or R, G, B) is the
+    lights' summed irradiance, which a photo cannot give.  The result's ``lights``,
+    ``shape`` and ``relief`` (the mesh, in pixels) say what the photo gave; its dipole is
+    approximate there and ``fit`` defaults to the Hermite profile."""
+    automatic = mesh is None and lights is None
+    if not automatic and (mesh is None or lights is None):
+        raise ArgumentError("give both mesh and lights, or neither (the photo alone, thesis §3.4)")
+    if automatic and fit == "dipole":
+        fit = "hermite"
     if fit not in ("dipole", "hermite"):
         raise ArgumentError("fit must be 'dipole' or 'hermite' (§3.4's monotone cubic Hermite), got %r" % (fit,))
     _check_progress(progress)
-    pixels = _photo(photo)
+    pixels = _photo(photo, eight_bit="warn" if automatic else "refuse")
     height, width = pixels.shape[:2]
-    light_array = _lights(lights)
-    params = _lib.TranslucencyEstimateParamsStruct()
-    _check(lib.arcus_translucency_estimate_params_init(byref(params)))
-    _camera(params, dict(camera or {}, width=width, height=height))
-    params.ortho_height = to_float(ortho_height, "ortho_height")
-    params.mm_per_unit = to_float(mm_per_unit, "mm_per_unit")
+    whole = _lib.TranslucencyAutoParamsStruct()
+    _check(lib.arcus_translucency_auto_params_init(byref(whole)))
+    if not automatic:  # §3.3.1's defaults, not the photo-alone ones
+        _check(lib.arcus_translucency_estimate_params_init(byref(whole.estimate)))
+    params = whole.estimate
+    if automatic:
+        whole.mm_per_pixel = to_float(mm_per_pixel, "mm_per_pixel")
+        whole.irradiance = (c_double * 3)(*_rgb(irradiance, "irradiance"))
+        _shape_params(whole.shape, shape or {})
+    else:
+        light_array = _lights(lights)
+        _camera(params, dict(camera or {}, width=width, height=height))
+        params.ortho_height = to_float(ortho_height, "ortho_height")
+        params.mm_per_unit = to_float(mm_per_unit, "mm_per_unit")
     params.eta = to_float(eta, "eta")
     params.exit = to_choice(exit, "exit", _EXITS)
     params.basis_count = to_int(basis, "basis", 2, 64)
     params.basis = to_choice(family, "family", BASIS_FAMILIES)
     params.tikhonov = to_float(tikhonov, "tikhonov")
-    params.nonnegative = int(bool(nonnegative))
+    if nonnegative is not None:  # else the default: off, as the thesis; on for the photo alone
+        params.nonnegative = int(bool(nonnegative))
     params.fit = to_choice(fit_to, "fit_to", _FIT_TO)
     params.r_max_mm = to_float(r_max_mm, "r_max_mm")
     params.max_side = to_int(max_side, "max_side", 8, 4096)
-    params.remove_highlights = int(bool(remove_highlights))
+    if remove_highlights is not None:  # else on, as the thesis; off for the photo alone
+        params.remove_highlights = int(bool(remove_highlights))
     params.subtract_minimum = int(bool(subtract_minimum))
     matte_array = _matte(matte, height, width)
     t0 = time.perf_counter()
+    matte_pointer = None if matte_array is None else _lib.ptr(matte_array, c_uint8)
     with _owned_context(context) as ctx:
-        mesh_handle = _mesh_handle(ctx, mesh)
+        mesh_handle = None if automatic else _mesh_handle(ctx, mesh)
         try:
             def start(callback, job_out):
                 params.progress = callback
+                if automatic:
+                    return lib.arcus_translucency_estimate_auto(ctx._handle, width, height, _lib.ptr(pixels, c_float),
+                                                                matte_pointer, byref(whole), job_out)
                 return lib.arcus_translucency_estimate(ctx._handle, mesh_handle, width, height,
-                                                       _lib.ptr(pixels, c_float),
-                                                       None if matte_array is None else _lib.ptr(matte_array, c_uint8),
+                                                       _lib.ptr(pixels, c_float), matte_pointer,
                                                        len(light_array), light_array, byref(params), job_out)
 
             def read(job):
@@ -560,12 +591,14 @@ def estimate_bssrdf(photo, mesh, lights, camera=None, *, basis=24, family="piece
                 hermite = np.empty((_HERMITE_SAMPLES, 3))
                 ctx._check(lib.arcus_job_get_translucency_hermite(job, _HERMITE_SAMPLES, _lib.ptr(hermite)))
                 return (r, edges, weights, hermite, _lib.feature_names(bits.value),
-                        _system(ctx, job, r) if keep_system else None)
+                        _system(ctx, job, r) if keep_system else None,
+                        _automatic(ctx, job, height, width) if automatic else {})
 
-            r, edges, weights, hermite, features, system = ctx._run_job(start, progress, False, "arcus_translucency_estimate",
-                                                       reader=read)
+            r, edges, weights, hermite, features, system, found = ctx._run_job(
+                start, progress, False, "arcus_translucency_estimate", reader=read)
         finally:
-            lib.arcus_mesh_release(mesh_handle)
+            if mesh_handle is not None:
+                lib.arcus_mesh_release(mesh_handle)
     seconds = time.perf_counter() - t0
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # a channel outside diffusion is reported by .dipole.diffusive
@@ -580,5 +613,34 @@ def estimate_bssrdf(photo, mesh, lights, camera=None, *, basis=24, family="piece
         highlight_cut=r.highlight_cut, minimum_subtracted=np.array(r.minimum_subtracted[:]),
         timings={"geometry": r.geometry_seconds, "histograms": r.histogram_seconds, "solve": r.solve_seconds,
                  "total": seconds},
-        features=features, system=system, hermite=Profile(r.r_max_mm, hermite, r.dipole.eta), fit=fit)
+        features=features, system=system, hermite=Profile(r.r_max_mm, hermite, r.dipole.eta), fit=fit, **found)
+
+
+def _shape_params(params, options):
+    """estimate_shape's keyword arguments into an arcus_photo_shape_params."""
+    from ._single_image import DEPTH_METHODS
+    for name, value in options.items():
+        if name == "method":
+            params.method = to_choice(value, "shape['method']", DEPTH_METHODS)
+        elif name in ("relief", "sigma_spatial", "sigma_intensity", "base_weight", "detail_weight", "inflation"):
+            setattr(params, name, to_float(value, "shape[%r]" % name))
+        else:
+            raise ArgumentError("shape: unknown option %r (method, relief, sigma_spatial, sigma_intensity, "
+                                "base_weight, detail_weight, inflation)" % (name,))
+
+
+def _automatic(ctx, job, height, width):
+    """What an automatic estimate found: Estimate's lights, shape and relief."""
+    found = _lib.LightDetectionStruct()
+    vertices, triangles = c_size_t(), c_size_t()
+    ctx._check(lib.arcus_job_get_translucency_auto(job, None, None, None, None, byref(vertices), byref(triangles),
+                                                   None, None))
+    depth, normals = np.empty((height, width)), np.empty((height, width, 3))
+    mask = np.empty((height, width), np.uint8)
+    positions, faces = np.empty((vertices.value, 3)), np.empty((triangles.value, 3), np.uint32)
+    ctx._check(lib.arcus_job_get_translucency_auto(job, byref(found), _lib.ptr(depth), _lib.ptr(normals),
+                                                   _lib.ptr(mask, c_uint8), None, None, _lib.ptr(positions),
+                                                   _lib.ptr(faces, c_uint32)))
+    return {"lights": light_detection(found), "shape": PhotoShape(depth=depth, normals=normals, mask=mask.astype(bool)),
+            "relief": (positions, faces)}
 
