@@ -28,6 +28,24 @@ MM_PER_UNIT = 20.0
 SIZE = 128
 
 
+# A coloured material: R_total and ℓ_d (mm) per channel, so that each channel is its own
+# check; on objects 40–52 mm across.
+COLOURED_R_TOTAL, COLOURED_DIFFUSE_LENGTH = np.array([0.85, 0.6, 0.35]), [6.0, 4.0, 2.0]
+
+
+@lru_cache(maxsize=None)
+def coloured_photograph(geometry):
+    """The engine's render of `geometry` in the coloured material under Fig. 3.10's light
+    (irradiance 1), orthographic; and the photo's scale, mm a pixel."""
+    mesh = geometries()[geometry]
+    extent = float(np.abs(mesh[0][:, :2]).max())
+    camera = {"position": (0, 0, 5), "look_at": (0, 0, 0), "up": (0, 1, 0), "width": SIZE, "height": SIZE}
+    material = Dipole.from_reflectance(COLOURED_R_TOTAL, COLOURED_DIFFUSE_LENGTH, eta=1.3)
+    photo = render(material, mesh, [(toward(*FIG_3_10_LIGHT), 1.0)], camera, ortho_height=2.4 * extent,
+                   mm_per_unit=MM_PER_UNIT, highlight_deg=0)
+    return photo, 2.4 * extent / SIZE * MM_PER_UNIT
+
+
 def toward(azimuth_deg, zenith_deg):
     t, p = np.radians(azimuth_deg), np.radians(zenith_deg)
     return np.array([np.sin(p) * np.cos(t), np.sin(p) * np.sin(t), np.cos(p)])

@@ -289,3 +289,29 @@ def test_the_command_estimates_what_it_rendered(tmp_path):
     r = arcus_command("bssrdf", "estimate", "photo.exr", "--mesh", "sphere.off", "--tikhonov", "-1", *view,
                       cwd=tmp_path)
     assert r.returncode == 2 and "tikhonov" in r.stderr, r.stderr
+
+
+@pytest.mark.end_to_end
+def test_the_command_estimates_from_the_photo_alone(tmp_path):
+    """arcus bssrdf estimate PHOTO --auto: the light found and printed, the shape and the
+    re-render written; a mesh or light beside --auto, or an 8-bit photo's codes, are
+    refused or warned of on the command line."""
+    write_off(tmp_path / "sphere.off", *SPHERE)
+    r = arcus_command("bssrdf", "render", "sphere.off", "--material", "apple", "--highlight", "0", "--width", "80",
+                      "--height", "80", "--ortho-height", "2.6", "--mm-per-unit", "20", "--light", "-0.5", "0.4", "0.7",
+                      "-o", "photo.exr", "-o", "photo.png", "--quiet", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    r = arcus_command("bssrdf", "estimate", "photo.exr", "--auto", "--mm-per-pixel", "0.65", "--compare", "out",
+                      "--quiet", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert "1 light:" in r.stdout and "Hermite R_total" in r.stdout, r.stdout
+    for name in ("compare.png", "profile.png", "depth.exr", "normals.png", "relief.obj"):
+        assert (tmp_path / "out" / name).stat().st_size > 500, name
+    assert image.read(tmp_path / "out" / "depth.exr").max() > 10  # pixels: a sphere ~30 pixels in radius
+    r = arcus_command("bssrdf", "estimate", "photo.exr", "--auto", "--mesh", "sphere.off", cwd=tmp_path)
+    assert r.returncode == 2 and "give neither --mesh nor --light" in r.stderr, r.stderr
+    r = arcus_command("bssrdf", "estimate", "photo.exr", cwd=tmp_path)
+    assert r.returncode == 2 and "--auto" in r.stderr, r.stderr
+    r = arcus_command("bssrdf", "estimate", "photo.png", "--auto", "--quiet", cwd=tmp_path)
+    assert "warning: photo: photo.png is an 8-bit image" in r.stderr, r.stderr
+    assert r.returncode == 2 and "clipped?" in r.stderr, r.stderr  # the PNG's exposure clips the highlight

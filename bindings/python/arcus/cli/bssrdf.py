@@ -4,10 +4,16 @@ is given; the output's extension picks the format (.png, .jpg, .exr, .hdr).
 
 arcus bssrdf estimate PHOTO --mesh MESH --light ...: the BSSRDF of the object in an HDR
 photograph (thesis §3.3.1): the piecewise-constant profile and the dipole fitted to it,
-with --compare writing photo | re-render | difference and the profile's plot."""
+with --compare writing photo | re-render | difference and the profile's plot.
+
+arcus bssrdf estimate PHOTO --auto: the same from the photo alone (thesis §3.4): the
+lights and the shape found in it (printed; with --compare also depth.exr, normals.png
+and relief.obj beside the re-render), §3.4's Hermite profile first."""
 
 import argparse
+import sys
 import time
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -81,7 +87,14 @@ def add_estimate(verbs):
                          epilog="example:\n  arcus bssrdf estimate photo.exr --mesh sphere.ply --light 0.3 0.5 1 "
                                 "--ortho-height 2.2 --mm-per-unit 20 --compare out/")
     e.add_argument("photo", help="an HDR photograph (.exr, .hdr): linear radiance")
-    e.add_argument("--mesh", required=True, help="the object's mesh file, or a bundled mesh's name")
+    e.add_argument("--mesh", help="the object's mesh file, or a bundled mesh's name (not with --auto)")
+    e.add_argument("--auto", action="store_true",
+                   help="no mesh and no lights: find both in the photo (thesis §3.4, docs/translucency-photo.md)")
+    e.add_argument("--mm-per-pixel", type=float, default=1.0,
+                   help="--auto: the photo's scale at the object, mm (default 1; moves l_d, not R_total)")
+    e.add_argument("--irradiance", type=float, nargs="+", default=[1.0], metavar="E",
+                   help="--auto: the lights' summed irradiance, one number or R G B, in the photo's units "
+                        "(default 1: a photo cannot give it)")
     e.add_argument("--light", type=float, nargs="+", action="append", metavar="X",
                    help="a directional light as for render (default: one from (1, 1, 1))")
     view_arguments(e)
@@ -94,9 +107,9 @@ def add_estimate(verbs):
     e.add_argument("--tikhonov", type=float, default=0.0,
                    help="λ: add λ × the mean diagonal of AᵀA to it (default 0: off, as the thesis)")
     e.add_argument("--nonnegative", action="store_true", help="keep the basis weights >= 0 (off in the thesis)")
-    e.add_argument("--fit", choices=("dipole", "hermite"), default="dipole",
-                   help="the model --compare re-renders: the fitted dipole (default) or §3.4's monotone cubic "
-                        "Hermite profile")
+    e.add_argument("--fit", choices=("dipole", "hermite"),
+                   help="the model --compare re-renders: the fitted dipole (the default) or §3.4's monotone cubic "
+                        "Hermite profile (the default with --auto)")
     e.add_argument("--fit-to", choices=("image", "profile"), default="image",
                    help="fit the dipole to the pixels it predicts (default) or to the profile's bins (the thesis)")
     e.add_argument("--compare", metavar="DIR", help="write DIR/compare.png (photo | re-render | difference) and "
@@ -202,7 +215,12 @@ def run_render(args):
 
 
 def run_estimate(args):
+    if args.auto:
+        return run_automatic(args)
+    if not args.mesh:
+        raise ArgumentError("--mesh: give the object's mesh, or --auto to estimate it from the photo")
     from .. import image
+    args.fit = args.fit or "dipole"
     mesh_path = bundled_mesh(args.mesh)
     lights = lights_of(args)
     photo = translucency._photo(args.photo)
@@ -218,26 +236,95 @@ def run_estimate(args):
                                                nonnegative=args.nonnegative, fit=args.fit, fit_to=args.fit_to, ortho_height=ortho, mm_per_unit=args.mm_per_unit,
                                                eta=args.eta, exit=args.exit, matte=matte,
                                                progress=bar if bar.shown else None, context=ctx)
-        d = est.dipole
-        print("%s: %d × %d pixels used (%d equations), %d %s functions to %.3g mm, %.1f s" % (
-            Path(args.photo).name, est.pixels["width"], est.pixels["height"], est.pixels["equations"], args.basis,
-            args.family.replace("_", "-"), est.profile[0][-1], time.monotonic() - started))
-        rows = [("sigma_a [1/mm]", d.sigma_a), ("sigma_s' [1/mm]", d.sigma_s_prime), ("albedo a'", d.albedo),
-                ("sigma_t' [1/mm]", d.sigma_t_prime), ("l_d [mm]", d.diffuse_length),
-                ("R_total", d.total_reflectance), ("cond(A)", est.condition["A"]),
-                ("QMR iterations", est.solve["iterations"]), ("image error", est.solve["image_error"]),
-                ("fit error", est.solve["fit_error"]), ("Hermite R_total", est.hermite.total_reflectance)]
-        print("%-18s %12s %12s %12s" % ("", "R", "G", "B"))
-        for name, values in rows:
-            print("%-18s %12.5g %12.5g %12.5g" % ((name,) + tuple(values)))
+        print_estimate(args, est, started)
         if args.compare:
             out = Path(args.compare)
             out.mkdir(parents=True, exist_ok=True)
             again = translucency.render(est.fitted, mesh_path, lights, camera, ortho_height=ortho,
                                         mm_per_unit=args.mm_per_unit, exit=args.exit, highlight_deg=0, context=ctx)
-            write_comparison(out, photo, again.image, est, d)
+            write_comparison(out, photo, again.image, est, est.dipole)
             print("wrote %s, %s" % ((out / "compare.png").resolve(), (out / "profile.png").resolve()))
     return 0
+
+
+def print_estimate(args, est, started):
+    """The estimate's summary line and its table, per channel."""
+    d = est.dipole
+    print("%s: %d × %d pixels used (%d equations), %d %s functions to %.3g mm, %.1f s" % (
+        Path(args.photo).name, est.pixels["width"], est.pixels["height"], est.pixels["equations"], args.basis,
+        args.family.replace("_", "-"), est.profile[0][-1], time.monotonic() - started))
+    rows = [("sigma_a [1/mm]", d.sigma_a), ("sigma_s' [1/mm]", d.sigma_s_prime), ("albedo a'", d.albedo),
+            ("sigma_t' [1/mm]", d.sigma_t_prime), ("l_d [mm]", d.diffuse_length),
+            ("R_total", d.total_reflectance), ("cond(A)", est.condition["A"]),
+            ("QMR iterations", est.solve["iterations"]), ("image error", est.solve["image_error"]),
+            ("fit error", est.solve["fit_error"]), ("Hermite R_total", est.hermite.total_reflectance)]
+    print("%-18s %12s %12s %12s" % ("", "R", "G", "B"))
+    for name, values in rows:
+        print("%-18s %12.5g %12.5g %12.5g" % ((name,) + tuple(values)))
+
+
+def run_automatic(args):
+    """arcus bssrdf estimate PHOTO --auto: the lights, the shape and the BSSRDF from the
+    photo alone."""
+    from .. import image
+    if args.mesh or args.light:
+        raise ArgumentError("--auto finds the mesh and the lights in the photo: give neither --mesh nor --light")
+    if len(args.irradiance) not in (1, 3):
+        raise ArgumentError("--irradiance: give one number or R G B (got %d numbers)" % len(args.irradiance))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        photo = translucency._photo(args.photo, eight_bit="warn")
+    for warning in caught:
+        print("arcus bssrdf: warning: %s" % warning.message, file=sys.stderr)
+    matte = None if args.matte is None else image.read(args.matte).max(axis=2) > 0
+    started = time.monotonic()
+    with Context(_device(args.device)) as ctx:
+        with Progress("estimating from the photo alone", quiet=args.quiet) as bar:
+            est = translucency.estimate_bssrdf(
+                photo, basis=args.basis, family=args.family, tikhonov=args.tikhonov,
+                nonnegative=True if args.nonnegative else None, fit=args.fit or "hermite", fit_to=args.fit_to,
+                eta=args.eta, exit=args.exit, matte=matte, mm_per_pixel=args.mm_per_pixel,
+                irradiance=args.irradiance if len(args.irradiance) == 3 else args.irradiance[0],
+                progress=bar if bar.shown else None, context=ctx)
+        found = est.lights
+        print("%s: the object has %d pixels (%s), %d light%s:" % (
+            Path(args.photo).name, found.object_pixels, "segmented" if found.segmented else "the matte's",
+            len(found.lights), "" if len(found.lights) == 1 else "s"))
+        for light in found.lights:
+            print("  azimuth %6.1f° ± %.1f°, zenith %5.1f° ± %.1f°, toward (%.3f, %.3f, %.3f), intensity %.2f" % (
+                light.azimuth_deg, light.azimuth_spread_deg, light.zenith_deg, light.zenith_spread_deg,
+                *light.direction, light.intensity))
+        print_estimate(args, est, started)
+        print("the dipole is approximate here; the Hermite profile is the estimate (docs/translucency-photo.md)")
+        if args.compare:
+            out = Path(args.compare)
+            out.mkdir(parents=True, exist_ok=True)
+            height, width = photo.shape[:2]
+            camera = {"position": (0, 0, 4 * max(width, height)), "look_at": (0, 0, 0), "up": (0, 1, 0),
+                      "width": width, "height": height}
+            irradiance = args.irradiance * 3 if len(args.irradiance) == 1 else args.irradiance
+            lights = [(light.direction, [e * light.intensity for e in irradiance]) for light in found.lights]
+            again = translucency.render(est.fitted, est.relief, lights, camera, ortho_height=height,
+                                        mm_per_unit=args.mm_per_pixel, exit=args.exit, highlight_deg=0, context=ctx)
+            write_comparison(out, photo, again.image, est, est.dipole)
+            write_shape(out, est)
+            print("wrote %s" % ", ".join(str((out / n).resolve()) for n in
+                                         ("compare.png", "profile.png", "depth.exr", "normals.png", "relief.obj")))
+    return 0
+
+
+def write_shape(out, est):
+    """The shape the photo gave: depth (pixels, EXR), normals (as colours, 0.5 + n/2),
+    the closed mesh (OBJ, in pixels)."""
+    from .. import image
+    shape = est.shape
+    image.write(out / "depth.exr", np.repeat(shape.depth[..., None], 3, axis=2).astype(np.float32))
+    image.write(out / "normals.png", np.where(shape.mask[..., None], 0.5 + 0.5 * shape.normals, 0))
+    vertices, triangles = est.relief
+    with open(out / "relief.obj", "w") as f:
+        f.write("# arcus bssrdf estimate --auto: the closed mesh of the photo's depth, in pixels\n")
+        f.writelines("v %.6g %.6g %.6g\n" % tuple(v) for v in vertices)
+        f.writelines("f %d %d %d\n" % tuple(t + 1) for t in triangles)
 
 
 def write_comparison(out, photo, rendered, est, dipole):
