@@ -11,6 +11,12 @@
         photo rendered by the dipole and estimated back; DIR/table_3_3.md (reduced albedo
         and extinction: the measured values, the thesis' estimates and errors, ours) and
         DIR/table_3_3.png (the photos above their re-renders).
+    python3 apps/translucency/showcase.py photo --out DIR [--side N]
+        Thesis §3.4, §5.2: a synthetic photograph of an apple lumpy sphere under one light,
+        estimated from the photo alone (no mesh, no lights):
+        DIR/photo_estimate.png (photograph | estimated shape, its normals as colours |
+        re-render under the lights found) and DIR/photo_estimate.md (the light found, R_total
+        against Jensen's measured values).
     python3 apps/translucency/showcase.py genetic --out DIR [--side N]
         Table 5.1's genetic search (§5.1) on scenes/translucency/table_5_1.json:
         DIR/genetic.png (target | best render) and DIR/table_5_1.md (the best genes
@@ -33,7 +39,7 @@ from arcus import image  # noqa: E402
 from arcus.cli import resources  # noqa: E402
 from arcus.cli.bssrdf import write_comparison  # noqa: E402
 from arcus.inverse import genetic  # noqa: E402
-from arcus.translucency import Dipole, estimate_bssrdf, render  # noqa: E402
+from arcus.translucency import Dipole, estimate_bssrdf, read_mesh, render  # noqa: E402
 
 LIGHTS = [((0.3, 0.5, 1), 1.0), ((-1, 0.2, 0.3), 0.3)]
 VIEW = {"position": (0, 0, 5), "look_at": (0, 0, 0)}
@@ -167,16 +173,49 @@ def search(out, side):
                    found.timings["total"], "\n".join(lines)))
 
 
+def from_the_photo(out, side):
+    v, f = read_mesh(resources.mesh("icosphere"))
+    u = v / np.linalg.norm(v, axis=1, keepdims=True)
+    lumpy = v * (1 + 0.12 * np.sin(3 * np.arctan2(u[:, 1], u[:, 0])) * (1 - u[:, 2] ** 2) + 0.08 * u[:, 2])[:, None]
+    truth = Dipole.from_material("apple")
+    zenith, azimuth = np.radians(45), np.radians(145)  # Fig. 3.10's light
+    toward = (np.sin(zenith) * np.cos(azimuth), np.sin(zenith) * np.sin(azimuth), np.cos(zenith))
+    view = dict(VIEW, up=(0, 1, 0), width=side, height=side)
+    extent = float(np.abs(lumpy[:, :2]).max())
+    photo = render(truth, (lumpy, f), [(toward, 1.0)], view, ortho_height=2.4 * extent, mm_per_unit=20,
+                   highlight_deg=0).image
+    mm_per_pixel = 2.4 * extent * 20 / side
+    e = estimate_bssrdf(photo, mm_per_pixel=mm_per_pixel)
+    seen = {"position": (0, 0, 4 * side), "look_at": (0, 0, 0), "up": (0, 1, 0), "width": side, "height": side}
+    lights = [(light.direction, light.intensity) for light in e.lights.lights]
+    again = render(e.hermite, e.relief, lights, seen, ortho_height=side, mm_per_unit=mm_per_pixel,
+                   highlight_deg=0).image
+    top = float(np.percentile(photo[photo.max(axis=2) > 0].max(axis=1), 99.5))
+    normals = np.where(e.shape.mask[..., None], 0.5 + 0.5 * e.shape.normals, 0) * top / 0.9
+    image.write(Path(out) / "photo_estimate.png", np.concatenate([photo, normals, again], axis=1) * (0.9 / top))
+    light = e.lights.lights[0]
+    rows = ["| | R | G | B |", "|---|---|---|---|",
+            "| R_total, §3.4's Hermite profile | %s |" % " | ".join("%.3g" % x for x in e.hermite.total_reflectance),
+            "| R_total, the dipole (approximate) | %s |" % " | ".join("%.3g" % x for x in e.dipole.total_reflectance),
+            "| R_total, Jensen et al. 2001 | %s |" % " | ".join("%.3g" % x for x in truth.total_reflectance)]
+    with open(os.path.join(out, "photo_estimate.md"), "w") as f:
+        f.write("Apple, a lumpy sphere at %d², from the photo alone (%.1f s).  The light: azimuth %.1f°, zenith "
+                "%.0f° (the truth: 145°, 45°).\n\n%s\n" % (side, e.timings["total"], light.azimuth_deg,
+                                                          light.zenith_deg, "\n".join(rows)))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("part", choices=("estimate", "table_3_3", "genetic"))
+    ap.add_argument("part", choices=("estimate", "photo", "table_3_3", "genetic"))
     ap.add_argument("--out", required=True)
     ap.add_argument("--side", type=int, default=0,
-                    help="pixels a side (default: 200 estimate and table_3_3, 64 genetic)")
+                    help="pixels a side (default: 200 estimate, photo and table_3_3, 64 genetic)")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     if args.part == "estimate":
         estimate(args.out, args.side or 200)
+    elif args.part == "photo":
+        from_the_photo(args.out, args.side or 200)
     elif args.part == "table_3_3":
         table_3_3_page(args.out, args.side or 200)
     else:

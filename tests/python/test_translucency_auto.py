@@ -12,6 +12,7 @@ from arcus._errors import ArgumentError
 from photo_scenes import (COLOURED_R_TOTAL as R_TOTAL, FIG_3_10_LIGHT, MM_PER_UNIT, SIZE, coloured_photograph,
                           geometries, lambertian_sphere, toward)
 
+@pytest.mark.heavy
 @pytest.mark.parametrize("geometry", ["sphere", "lumpy sphere"])
 def test_the_photo_alone_gives_its_material_back(geometry):
     """No mesh, no lights, no matte: the estimate's Hermite profile re-renders the photo

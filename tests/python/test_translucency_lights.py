@@ -48,6 +48,7 @@ def test_closed_form_sphere_is_found_to_a_fraction_of_a_degree():
             assert angle_deg(found.lights[0].direction, toward(azimuth, zenith)) < bound, (azimuth, zenith)
 
 
+@pytest.mark.heavy
 def test_two_lights_are_found_as_two():
     """Two lights 125° apart, one 0.6 of the other, on the translucent sphere and the
     closed-form one: two found, each within 20° of its own, the stronger first.  Their

@@ -34,6 +34,7 @@ def fig_3_9():
     return errors
 
 
+@pytest.mark.heavy
 def test_fig_3_9_layers_against_the_simplest_method(fig_3_9):
     """The simplest method (luminance as depth) puts the bulge where the light is: its
     normals are 34–37° off.  The base layer's convex stand-in (inflated from the contour:

@@ -162,6 +162,12 @@ def steps(full):
                   ["apps/translucency/showcase.py", "estimate", "--out", "{out}"]
                   + ([] if full else ["--side", "128"]), "translucency/estimate",
                   pictures=["compare.png", "profile.png"], expected_seconds=12.0))
+    s.append(Step("Translucency", "From an uncontrolled photograph",
+                  "Thesis §3.4, §5.2: a synthetic photograph of an apple lumpy sphere, with no mesh and no light "
+                  "given: the light found on its contour and inside it, the shape inflated from its contour, and "
+                  "§3.4's Hermite profile estimated on that shape; photograph | estimated normals | re-render.",
+                  ["apps/translucency/showcase.py", "photo", "--out", "{out}"]
+                  + ([] if full else ["--side", "128"]), "translucency/photo", expected_seconds=8.0))
     s.append(Step("Translucency", "Table 3.3: six materials estimated back",
                   "Thesis §3.3.1, Table 3.3: Jensen et al. 2001's apple, cream, marble, potato, skim and whole "
                   "milk on a torus lit from the front and from behind, each photo estimated back; reduced albedo "
