@@ -331,7 +331,8 @@ ARCUS_API arcus_status arcus_job_get_translucency_sub_sources(arcus_job_t* job, 
  * normals gives each light's azimuth θ, and the number of lights is the fewest whose
  * clamped-cosine model explains the contour (docs/translucency.md).  Each light's zenith
  * φ is then fitted to the luminance gradients inside the object, with the normals of a
- * globally convex stand-in (the contour's distance map, a sphere's profile).
+ * globally convex stand-in inflated from the contour (Johnston 2002).  A photo larger
+ * than 512 pixels a side is box-filtered by a whole factor first.
  * Angles in the camera's frame: x right, y up, z toward the camera. */
 #define ARCUS_MAX_DETECTED_LIGHTS 4
 
@@ -377,7 +378,9 @@ ARCUS_API arcus_status arcus_translucency_detect_lights(arcus_context_t* ctx, ui
  * and 0.3–0.5).  The bas-relief ambiguity leaves Z's scale unknown: `relief` multiplies
  * it (1: a sphere's depth for a round object).  ARCUS_DEPTH_LUMINANCE is the simplest
  * method, Z = R × luminance (Fig. 3.9's "simplest", for comparison).  Normals from Z's
- * central differences.  docs/translucency.md. */
+ * central differences.  Like the lights, it works at most 512 pixels a side (a larger
+ * photo box-filtered by a whole factor) and is read back at the photo's size, depth in
+ * the photo's pixels.  docs/translucency-photo.md. */
 typedef enum arcus_depth_method {
   ARCUS_DEPTH_BASE_DETAIL = 0, /* base and detail layers (the thesis' choice; default)        */
   ARCUS_DEPTH_BASE = 1,        /* the base layer alone                                          */

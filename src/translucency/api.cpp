@@ -336,9 +336,14 @@ arcus_status arcus_translucency_estimate_shape(arcus_context_t* ctx, uint32_t wi
     check_shape_params(*params);
     const PhotoObject object = find_object(width, height, photo, matte);
     const PhotoShape shape = estimate_shape(object, *params);
-    std::copy(shape.depth.begin(), shape.depth.end(), depth);
-    std::copy(shape.normals.begin(), shape.normals.end(), normals);
-    if (mask) std::copy(object.mask.begin(), object.mask.end(), mask);
+    const std::vector<double> photo_depth = at_photo_size(object, shape.depth, 1, object.scale);
+    const std::vector<double> photo_normals = at_photo_size(object, shape.normals, 3, 1);
+    std::copy(photo_depth.begin(), photo_depth.end(), depth);
+    std::copy(photo_normals.begin(), photo_normals.end(), normals);
+    if (mask) {
+      const std::vector<uint8_t> photo_mask = at_photo_size(object, object.mask);
+      std::copy(photo_mask.begin(), photo_mask.end(), mask);
+    }
     return ARCUS_SUCCESS;
   });
 }

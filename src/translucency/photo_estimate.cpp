@@ -53,8 +53,12 @@ geometry::Mesh relief_mesh(const PhotoObject& o, const PhotoShape& shape, std::v
             sum += shape.depth[size_t(y + dy) * w + size_t(x + dx)];
           }
       if (touching == 0) continue;
-      const double z = std::max(kLeastDepth, sum / 4);
-      const double px = double(x) - 0.5 * w, py = 0.5 * h - double(y);
+      const double z = std::max(kLeastDepth, o.scale * sum / 4);
+      // In the photo's pixels (a working pixel spans `scale` of them; the last row and
+      // column may span fewer), its centre at the origin.
+      const double f = o.scale;
+      const double px = std::min(double(x) * f, double(o.photo_width)) - 0.5 * o.photo_width;
+      const double py = 0.5 * o.photo_height - std::min(double(y) * f, double(o.photo_height));
       const size_t c = size_t(y) * (w + 1) + size_t(x);
       front[c] = uint32_t(mesh.vertex_count());
       back[c] = front[c] + 1;
@@ -117,12 +121,13 @@ std::unique_ptr<EstimateJob> estimate_automatic(arcus_context_t* ctx, uint32_t w
     std::copy(lights.lights[j].direction, lights.lights[j].direction + 3, directional[j].direction);
     for (int c = 0; c < 3; ++c) directional[j].irradiance[c] = lights.lights[j].intensity * p.irradiance[c];
   }
-  auto job = estimate(ctx, mesh, width, height, photo, used.data(), directional, params, cancelled);
+  std::vector<uint8_t> photo_mask = at_photo_size(object, used);
+  auto job = estimate(ctx, mesh, width, height, photo, photo_mask.data(), directional, params, cancelled);
   job->automatic = true;
   job->lights = lights;
-  job->depth = shape.depth;
-  job->normals = shape.normals;
-  job->mask = used;
+  job->depth = at_photo_size(object, shape.depth, 1, object.scale);
+  job->normals = at_photo_size(object, shape.normals, 3, 1);
+  job->mask = std::move(photo_mask);
   job->relief = std::move(mesh);
   job->result.geometry_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
                                   job->stats.total_seconds;

@@ -13,11 +13,12 @@
 
 namespace arcus::translucency {
 
-// The closed mesh of a depth map, in pixels (x right, y up, the photo's centre at the
-// origin): at every pixel corner the object touches a front vertex at the mean depth of
-// the four pixels (0 outside) and a back one at minus that, walls along the contour
-// joining them; two triangles a pixel on each side.  The mask is first opened (3 × 3) and
-// rid of pixels touching others only at a corner; *used gets it.
+// The closed mesh of a depth map at the working resolution, in the photo's pixels (x
+// right, y up, the photo's centre at the origin; object.scale of them a working pixel):
+// at every pixel corner the object touches, a front vertex at the mean depth of the four
+// pixels (0 outside) and a back one at minus that, walls along the contour joining them;
+// two triangles a pixel on each side.  The mask is first opened (3 × 3) and rid of
+// pixels touching others only at a corner; *used gets it.
 geometry::Mesh relief_mesh(const PhotoObject& object, const PhotoShape& shape, std::vector<uint8_t>* used);
 
 std::unique_ptr<EstimateJob> estimate_automatic(arcus_context_t* ctx, uint32_t width, uint32_t height,

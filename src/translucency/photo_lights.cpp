@@ -284,16 +284,29 @@ PhotoObject find_object(uint32_t width, uint32_t height, const float* photo, con
           "width × height = " + std::to_string(width) + " × " + std::to_string(height) + " is not 3..16384 a side");
   check_radiance(photo, width, height, "photo");
   PhotoObject o;
-  o.width = width;
-  o.height = height;
+  o.photo_width = width;
+  o.photo_height = height;
+  o.scale = (std::max(width, height) + kWorkingSide - 1) / kWorkingSide;
+  const uint32_t f = o.scale;
+  o.width = width = (o.photo_width + f - 1) / f;
+  o.height = height = (o.photo_height + f - 1) / f;
   const size_t n = size_t(width) * height;
-  o.luminance.resize(n);
-  for (size_t i = 0; i < n; ++i)
-    o.luminance[i] = 0.2126 * photo[3 * i] + 0.7152 * photo[3 * i + 1] + 0.0722 * photo[3 * i + 2];
+  // Box filters: a working pixel's luminance is its photo pixels' mean, and it is the
+  // matte's where at least half of them are.
+  o.luminance.assign(n, 0.0);
+  std::vector<double> share(n, 0.0), count(n, 0.0);
+  for (uint32_t y = 0; y < o.photo_height; ++y)
+    for (uint32_t x = 0; x < o.photo_width; ++x) {
+      const size_t i = size_t(y) * o.photo_width + x, k = size_t(y / f) * width + x / f;
+      o.luminance[k] += 0.2126 * photo[3 * i] + 0.7152 * photo[3 * i + 1] + 0.0722 * photo[3 * i + 2];
+      share[k] += matte && matte[i] ? 1 : 0;
+      count[k] += 1;
+    }
+  for (size_t k = 0; k < n; ++k) o.luminance[k] /= count[k];
   cv::Mat mask;
   if (matte) {
     mask = cv::Mat(int(height), int(width), CV_8U);
-    for (size_t i = 0; i < n; ++i) mask.data[i] = matte[i] ? 255 : 0;
+    for (size_t k = 0; k < n; ++k) mask.data[k] = share[k] >= 0.5 * count[k] ? 255 : 0;
   } else {
     o.segmented = true;
     mask = segment(o);
@@ -313,6 +326,25 @@ PhotoObject find_object(uint32_t width, uint32_t height, const float* photo, con
                               std::to_string(on_border) + " pixels: its contour, which shows the lights, is cut off "
                               "(frame the whole object)");
   return o;
+}
+
+std::vector<double> at_photo_size(const PhotoObject& o, const std::vector<double>& values, int channels,
+                                  double multiply) {
+  std::vector<double> out(size_t(o.photo_width) * o.photo_height * size_t(channels));
+  for (uint32_t y = 0; y < o.photo_height; ++y)
+    for (uint32_t x = 0; x < o.photo_width; ++x)
+      for (int c = 0; c < channels; ++c)
+        out[(size_t(y) * o.photo_width + x) * size_t(channels) + size_t(c)] =
+            multiply * values[(size_t(y / o.scale) * o.width + x / o.scale) * size_t(channels) + size_t(c)];
+  return out;
+}
+
+std::vector<uint8_t> at_photo_size(const PhotoObject& o, const std::vector<uint8_t>& values) {
+  std::vector<uint8_t> out(size_t(o.photo_width) * o.photo_height);
+  for (uint32_t y = 0; y < o.photo_height; ++y)
+    for (uint32_t x = 0; x < o.photo_width; ++x)
+      out[size_t(y) * o.photo_width + x] = values[size_t(y / o.scale) * o.width + x / o.scale];
+  return out;
 }
 
 std::vector<ContourSample> outer_contour(const PhotoObject& o) {

@@ -13,10 +13,18 @@
 
 namespace arcus::translucency {
 
-// The object in a photograph: a mask of its pixels (the matte's largest region, or one
-// segmented from the photo, small holes filled) and every pixel's luminance.
+// The side the single-image steps work at, at most: a larger photo is box-filtered by a
+// whole factor first (the steps' cost grows with the pixels, the relief solve's as their
+// square; the estimate itself works at 200 a side, as the thesis).
+constexpr uint32_t kWorkingSide = 512;
+
+// The object in a photograph, at the working resolution: a mask of its pixels (the
+// matte's largest region, or one segmented from the photo, small holes filled) and
+// every pixel's luminance.
 struct PhotoObject {
-  uint32_t width = 0, height = 0;
+  uint32_t width = 0, height = 0;              // the working resolution's
+  uint32_t scale = 1;                          // the photo's pixels a working pixel spans, a side
+  uint32_t photo_width = 0, photo_height = 0;  // the photo's own size
   std::vector<uint8_t> mask;      // 1: the object
   std::vector<double> luminance;  // Rec. 709 weights, every pixel
   size_t pixels = 0;              // the mask's
@@ -26,6 +34,12 @@ struct PhotoObject {
 // Checks the photo (finite, >= 0) and finds the object; errors name "photo" or "matte":
 // no object, or one touching the border.
 PhotoObject find_object(uint32_t width, uint32_t height, const float* photo, const uint8_t* matte);
+
+// A working-resolution map (`channels` values a pixel) read back at the photo's size
+// (each photo pixel takes its working pixel's values, times `multiply`).
+std::vector<double> at_photo_size(const PhotoObject& object, const std::vector<double>& values, int channels,
+                                  double multiply);
+std::vector<uint8_t> at_photo_size(const PhotoObject& object, const std::vector<uint8_t>& values);
 
 // A pixel of the outer contour: where (pixel centres, x right, y down), the outward
 // normal there in the camera's frame (x right, y up; the surface faces across the view

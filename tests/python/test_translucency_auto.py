@@ -6,11 +6,11 @@ against the material's closed-form R_total and the photo itself, re-rendered."""
 import numpy as np
 import pytest
 
-from arcus.translucency import estimate_bssrdf, render
+from arcus.translucency import detect_lights, estimate_bssrdf, estimate_shape, render
 from arcus._errors import ArgumentError
 
 from photo_scenes import (COLOURED_R_TOTAL as R_TOTAL, FIG_3_10_LIGHT, MM_PER_UNIT, SIZE, coloured_photograph,
-                          geometries, lambertian_sphere, toward)
+                          angle_deg, geometries, lambertian_sphere, toward)
 
 @pytest.mark.heavy
 @pytest.mark.parametrize("geometry", ["sphere", "lumpy sphere"])
@@ -100,3 +100,21 @@ def test_fig_3_11_the_estimate_against_wrong_lights():
         assert all(b >= a - 0.005 for a, b in zip(series, series[1:])), (turned, series)
     assert errors["azimuth", 0] <= 0.03
     assert errors["azimuth", 20] <= 0.10
+
+
+def test_a_large_photo_is_worked_on_at_512_pixels_a_side():
+    """A 1300 × 1000 photo is box-filtered by 3 to 434 × 334 for the lights, the shape and
+    the mesh, and read back at its own size: the light within 1.5° (the closed form's
+    bound), the depth at the centre the sphere's radius in the photo's pixels within 3%
+    (a working pixel is three of them), the mask the photo's to within the blocks'
+    edges, and the estimate runs on it."""
+    photo, matte, _ = lambertian_sphere([(145.0, 45.0, 1.0)], size=1300, radius=420)
+    photo, matte = photo[150:1150], matte[150:1150]  # 1000 rows, the sphere inside
+    found = detect_lights(photo, matte)
+    assert angle_deg(found.lights[0].direction, toward(145.0, 45.0)) < 1.5
+    shape = estimate_shape(photo, matte)
+    assert shape.depth.shape == (1000, 1300)
+    assert shape.depth[500, 650] == pytest.approx(420, rel=0.03)
+    assert np.mean(shape.mask != matte) < 0.005
+    estimate = estimate_bssrdf(photo, matte=matte)
+    assert estimate.pixels["width"] <= 200 and np.abs(estimate.relief[0][:, :2]).max() <= 650

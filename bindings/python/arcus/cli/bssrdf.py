@@ -233,7 +233,8 @@ def run_estimate(args):
         with Progress("estimating (distance histograms)", quiet=args.quiet) as bar:
             est = translucency.estimate_bssrdf(photo, mesh_path, lights, camera, basis=args.basis,
                                                family=args.family, tikhonov=args.tikhonov,
-                                               nonnegative=args.nonnegative, fit=args.fit, fit_to=args.fit_to, ortho_height=ortho, mm_per_unit=args.mm_per_unit,
+                                               nonnegative=args.nonnegative, fit=args.fit, fit_to=args.fit_to,
+                                               ortho_height=ortho, mm_per_unit=args.mm_per_unit,
                                                eta=args.eta, exit=args.exit, matte=matte,
                                                progress=bar if bar.shown else None, context=ctx)
         print_estimate(args, est, started)
