@@ -2,12 +2,13 @@
 handed to the library, for rainbow particles (:meth:`arcus.rainbow.Mesh.from_arrays`)
 and for the meshes a render scene names (``Context.render(scene, meshes=...)``)."""
 
-from ctypes import byref, c_char_p, c_uint32, c_void_p
+import os
+from ctypes import byref, c_char_p, c_size_t, c_uint32, c_void_p
 
 import numpy as np
 
 from . import _lib
-from ._args import to_real_array
+from ._args import to_path, to_real_array
 from ._errors import ArgumentError
 from ._lib import lib
 
@@ -77,3 +78,35 @@ def load_scene(ctx, encoded_path, meshes, out):
     finally:
         for handle in handles:
             lib.arcus_mesh_release(handle)
+
+
+def read_mesh(path, context=None):
+    """The mesh file at ``path`` (OBJ, PLY, OFF, STL) as ``(vertices (N, 3) float64,
+    triangles (M, 3) uint32)``, read as every engine reads it."""
+    from .context import _owned_context  # the context module loads this one
+    with _owned_context(context) as ctx:
+        handle = c_void_p()
+        ctx._check(lib.arcus_mesh_load(ctx._handle, to_path(path, "path"), byref(handle)))
+        try:
+            nv, nt = c_size_t(), c_size_t()
+            ctx._check(lib.arcus_mesh_get_counts(handle, byref(nv), byref(nt)))
+            vertices = np.empty((nv.value, 3))
+            triangles = np.empty((nt.value, 3), np.uint32)
+            ctx._check(lib.arcus_mesh_get_arrays(handle, _lib.ptr(vertices), _lib.ptr(triangles, c_uint32)))
+        finally:
+            lib.arcus_mesh_release(handle)
+    return vertices, triangles
+
+
+def handle_of(ctx, mesh):
+    """An arcus_mesh_t of ``mesh`` (a file path or (vertices, triangles)) on ctx; the
+    caller releases it."""
+    handle = c_void_p()
+    if isinstance(mesh, (str, os.PathLike)):
+        ctx._check(lib.arcus_mesh_load(ctx._handle, to_path(mesh, "mesh"), byref(handle)))
+    elif isinstance(mesh, (tuple, list)) and len(mesh) == 2:
+        vertices, triangles = mesh_arrays(mesh[0], mesh[1], "mesh ")
+        ctx._check(create(ctx._handle, vertices, triangles, byref(handle)))
+    else:
+        raise ArgumentError("mesh must be a file path or a (vertices, triangles) pair, got %r" % (mesh,))
+    return handle

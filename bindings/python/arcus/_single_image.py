@@ -1,13 +1,14 @@
 """The single-image estimate (thesis §3.4): what an uncontrolled photograph gives
 without a mesh or lights.  Public through :mod:`arcus.translucency`."""
 
-from ctypes import byref, c_float, c_uint8
+from ctypes import byref, c_float, c_size_t, c_uint8, c_uint32
 from dataclasses import dataclass
 
 import numpy as np
 
 from . import _lib
 from ._args import to_choice, to_float
+from ._errors import ArgumentError
 from ._lib import lib
 from ._photos import read_matte, read_photo
 from .context import _owned_context
@@ -110,3 +111,31 @@ def estimate_shape(photo, matte=None, *, method="base+detail", relief=1.0, sigma
             None if matte_array is None else _lib.ptr(matte_array, c_uint8), byref(params), _lib.ptr(depth),
             _lib.ptr(normals), _lib.ptr(mask, c_uint8)))
     return PhotoShape(depth=depth, normals=normals, mask=mask.astype(bool))
+
+
+def shape_params_into(params, options):
+    """estimate_shape's keyword arguments into an arcus_photo_shape_params."""
+    for name, value in options.items():
+        if name == "method":
+            params.method = to_choice(value, "shape['method']", DEPTH_METHODS)
+        elif name in ("relief", "sigma_spatial", "sigma_intensity", "base_weight", "detail_weight", "inflation"):
+            setattr(params, name, to_float(value, "shape[%r]" % name))
+        else:
+            raise ArgumentError("shape: unknown option %r (method, relief, sigma_spatial, sigma_intensity, "
+                                "base_weight, detail_weight, inflation)" % (name,))
+
+
+def automatic_outputs(ctx, job, height, width):
+    """What an automatic estimate found: Estimate's lights, shape and relief."""
+    found = _lib.LightDetectionStruct()
+    vertices, triangles = c_size_t(), c_size_t()
+    ctx._check(lib.arcus_job_get_translucency_auto(job, None, None, None, None, byref(vertices), byref(triangles),
+                                                   None, None))
+    depth, normals = np.empty((height, width)), np.empty((height, width, 3))
+    mask = np.empty((height, width), np.uint8)
+    positions, faces = np.empty((vertices.value, 3)), np.empty((triangles.value, 3), np.uint32)
+    ctx._check(lib.arcus_job_get_translucency_auto(job, byref(found), _lib.ptr(depth), _lib.ptr(normals),
+                                                   _lib.ptr(mask, c_uint8), None, None, _lib.ptr(positions),
+                                                   _lib.ptr(faces, c_uint32)))
+    return {"lights": light_detection(found), "shape": PhotoShape(depth=depth, normals=normals, mask=mask.astype(bool)),
+            "relief": (positions, faces)}

@@ -18,21 +18,22 @@ R_d per mm², three channels R, G, B.
 import os
 import time
 import warnings
-from ctypes import byref, c_char_p, c_double, c_float, c_size_t, c_uint8, c_uint32, c_uint64, c_void_p
+from ctypes import byref, c_char_p, c_double, c_float, c_uint8, c_uint64
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from . import _lib
-from . import _meshes, image
+from . import image
 from ._advance import _check_progress
 from ._args import to_choice, to_float, to_int, to_path, to_real_array, to_vec3
 from ._errors import ArgumentError
 from ._lib import lib
 from .context import _owned_context
 from ._photos import read_matte as _matte, read_photo as _photo
-from ._single_image import (DetectedLight, LightDetection, PhotoShape, detect_lights,  # noqa: F401  (public here)
-                            estimate_shape, light_detection)
+from ._meshes import handle_of as _mesh_handle, read_mesh  # noqa: F401  (read_mesh is public here)
+from ._single_image import (DetectedLight, LightDetection, PhotoShape, automatic_outputs,  # noqa: F401  (public here)
+                            detect_lights, estimate_shape, shape_params_into)
 
 __all__ = ["Dipole", "Profile", "materials", "henyey_greenstein", "fresnel_reflectance", "render", "Rendered",
            "read_mesh", "estimate_bssrdf", "Estimate", "detect_lights", "LightDetection", "DetectedLight",
@@ -284,37 +285,6 @@ class Rendered:
     seconds: float = 0.0
 
 
-def read_mesh(path, context=None):
-    """The mesh file at ``path`` (OBJ, PLY, OFF, STL) as ``(vertices (N, 3) float64,
-    triangles (M, 3) uint32)``, read as every engine reads it."""
-    with _owned_context(context) as ctx:
-        handle = c_void_p()
-        ctx._check(lib.arcus_mesh_load(ctx._handle, to_path(path, "path"), byref(handle)))
-        try:
-            nv, nt = c_size_t(), c_size_t()
-            ctx._check(lib.arcus_mesh_get_counts(handle, byref(nv), byref(nt)))
-            vertices = np.empty((nv.value, 3))
-            triangles = np.empty((nt.value, 3), np.uint32)
-            ctx._check(lib.arcus_mesh_get_arrays(handle, _lib.ptr(vertices), _lib.ptr(triangles, c_uint32)))
-        finally:
-            lib.arcus_mesh_release(handle)
-    return vertices, triangles
-
-
-def _mesh_handle(ctx, mesh):
-    """An arcus_mesh_t of ``mesh`` (a file path or (vertices, triangles)) on ctx; the
-    caller releases it."""
-    handle = c_void_p()
-    if isinstance(mesh, (str, os.PathLike)):
-        ctx._check(lib.arcus_mesh_load(ctx._handle, to_path(mesh, "mesh"), byref(handle)))
-    elif isinstance(mesh, (tuple, list)) and len(mesh) == 2:
-        vertices, triangles = _meshes.mesh_arrays(mesh[0], mesh[1], "mesh ")
-        ctx._check(_meshes.create(ctx._handle, vertices, triangles, byref(handle)))
-    else:
-        raise ArgumentError("mesh must be a file path or a (vertices, triangles) pair, got %r" % (mesh,))
-    return handle
-
-
 def _lights(lights):
     """``lights`` as a ctypes array: a list of (direction, irradiance) pairs or dicts with
     those keys; irradiance is one number or R, G, B."""
@@ -547,7 +517,7 @@ def estimate_bssrdf(photo, mesh=None, lights=None, camera=None, *, basis=24, fam
     if automatic:
         whole.mm_per_pixel = to_float(mm_per_pixel, "mm_per_pixel")
         whole.irradiance = (c_double * 3)(*_rgb(irradiance, "irradiance"))
-        _shape_params(whole.shape, shape or {})
+        shape_params_into(whole.shape, shape or {})
     else:
         light_array = _lights(lights)
         _camera(params, dict(camera or {}, width=width, height=height))
@@ -592,7 +562,7 @@ def estimate_bssrdf(photo, mesh=None, lights=None, camera=None, *, basis=24, fam
                 ctx._check(lib.arcus_job_get_translucency_hermite(job, _HERMITE_SAMPLES, _lib.ptr(hermite)))
                 return (r, edges, weights, hermite, _lib.feature_names(bits.value),
                         _system(ctx, job, r) if keep_system else None,
-                        _automatic(ctx, job, height, width) if automatic else {})
+                        automatic_outputs(ctx, job, height, width) if automatic else {})
 
             r, edges, weights, hermite, features, system, found = ctx._run_job(
                 start, progress, False, "arcus_translucency_estimate", reader=read)
@@ -614,33 +584,4 @@ def estimate_bssrdf(photo, mesh=None, lights=None, camera=None, *, basis=24, fam
         timings={"geometry": r.geometry_seconds, "histograms": r.histogram_seconds, "solve": r.solve_seconds,
                  "total": seconds},
         features=features, system=system, hermite=Profile(r.r_max_mm, hermite, r.dipole.eta), fit=fit, **found)
-
-
-def _shape_params(params, options):
-    """estimate_shape's keyword arguments into an arcus_photo_shape_params."""
-    from ._single_image import DEPTH_METHODS
-    for name, value in options.items():
-        if name == "method":
-            params.method = to_choice(value, "shape['method']", DEPTH_METHODS)
-        elif name in ("relief", "sigma_spatial", "sigma_intensity", "base_weight", "detail_weight", "inflation"):
-            setattr(params, name, to_float(value, "shape[%r]" % name))
-        else:
-            raise ArgumentError("shape: unknown option %r (method, relief, sigma_spatial, sigma_intensity, "
-                                "base_weight, detail_weight, inflation)" % (name,))
-
-
-def _automatic(ctx, job, height, width):
-    """What an automatic estimate found: Estimate's lights, shape and relief."""
-    found = _lib.LightDetectionStruct()
-    vertices, triangles = c_size_t(), c_size_t()
-    ctx._check(lib.arcus_job_get_translucency_auto(job, None, None, None, None, byref(vertices), byref(triangles),
-                                                   None, None))
-    depth, normals = np.empty((height, width)), np.empty((height, width, 3))
-    mask = np.empty((height, width), np.uint8)
-    positions, faces = np.empty((vertices.value, 3)), np.empty((triangles.value, 3), np.uint32)
-    ctx._check(lib.arcus_job_get_translucency_auto(job, byref(found), _lib.ptr(depth), _lib.ptr(normals),
-                                                   _lib.ptr(mask, c_uint8), None, None, _lib.ptr(positions),
-                                                   _lib.ptr(faces, c_uint32)))
-    return {"lights": light_detection(found), "shape": PhotoShape(depth=depth, normals=normals, mask=mask.astype(bool)),
-            "relief": (positions, faces)}
 
